@@ -1,0 +1,314 @@
+"""Scenes: a TOML file becomes a validated, frozen :class:`Scene`.
+
+A scene states only what differs from the defaults. Every problem a user can cause
+raises :class:`ConfigError` whose message is one line naming the file, the section and
+key, and what is allowed. Unknown sections and keys are errors, never ignored.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import math
+import os
+import tomllib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .expressions import parse_multiple, parse_phase
+from .systems import LAWS, MODELS, System, get_system
+
+ANALYSIS_KINDS = ("trajectory",)
+METHODS = ("auto", "rk4", "dopri5")
+
+
+class ConfigError(ValueError):
+    """A user error in a scene or on the command line; the message is one line."""
+
+
+@dataclass(frozen=True)
+class IntegratorSettings:
+    """The validated [integrator] section (see README for meanings and defaults)."""
+
+    method: str = "auto"
+    steps_per_period: int = 1440
+    locate_switches: bool = True
+    rtol: float = 1e-8
+    atol: float = 1e-10
+    max_periods: int = 3000
+    max_orbit_period: int = 30
+    convergence_tol: float = 1e-6
+    divergence_bound: float = 1e6
+    max_steps_per_period: int = 200_000
+    max_switches_per_period: int = 10_000
+
+    @property
+    def resolved_method(self) -> str:
+        """The kernel method the run uses ('auto' picks the adaptive pair)."""
+        return "dopri5" if self.method == "auto" else self.method
+
+
+@dataclass(frozen=True)
+class TrajectoryAnalysis:
+    """[analysis] kind = "trajectory": one trajectory, recorded and classified."""
+
+    kind: str
+    state: tuple[float, ...]
+    periods: int = 200
+    t0: float = 0.0
+    samples_per_period: int = 64
+
+
+@dataclass(frozen=True)
+class Scene:
+    source: str
+    text: str
+    system: System
+    values: Mapping[str, Any]
+    integrator: IntegratorSettings
+    analysis: Any
+    output: Path
+    sections: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+
+    @property
+    def sha256(self) -> str:
+        return hashlib.sha256(self.text.encode()).hexdigest()
+
+
+# ---------------------------------------------------------------- small checkers
+
+
+class _Section:
+    """Reads keys of one TOML table, tracking which ones were used."""
+
+    def __init__(self, source: str, name: str, table: Mapping[str, Any]):
+        self.source = source
+        self.name = name
+        self.table = dict(table)
+        self.used: set[str] = set()
+
+    def fail(self, key: str | None, problem: str) -> ConfigError:
+        where = f"[{self.name}]" + (f" {key}" if key else "")
+        return ConfigError(f"{self.source}: {where}: {problem}")
+
+    def has(self, key: str) -> bool:
+        return key in self.table
+
+    def raw(self, key: str, default: Any = None) -> Any:
+        self.used.add(key)
+        return self.table.get(key, default)
+
+    def number(self, key: str, default: float | None, check: Callable[[float], str | None]
+               | None = None) -> float:
+        value = self.raw(key, default)
+        if value is None:
+            raise self.fail(key, "is required (a number)")
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise self.fail(key, f"must be a number, got {value!r}")
+        value = float(value)
+        if not math.isfinite(value):
+            raise self.fail(key, f"must be a finite number, got {value!r}")
+        if check is not None:
+            problem = check(value)
+            if problem:
+                raise self.fail(key, f"{problem}, got {value!r}")
+        return value
+
+    def integer(self, key: str, default: int, minimum: int, maximum: int | None = None) -> int:
+        value = self.raw(key, default)
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.fail(key, f"must be a whole number, got {value!r}")
+        if value < minimum or (maximum is not None and value > maximum):
+            allowed = f">= {minimum}" if maximum is None else f"in {minimum}..{maximum}"
+            raise self.fail(key, f"must be {allowed}, got {value!r}")
+        return value
+
+    def choice(self, key: str, default: str, allowed: tuple[str, ...]) -> str:
+        value = self.raw(key, default)
+        if value not in allowed:
+            hint = _did_you_mean(str(value), allowed)
+            raise self.fail(key, f"must be one of {', '.join(map(repr, allowed))}, got "
+                                 f"{value!r}{hint}")
+        return value
+
+    def boolean(self, key: str, default: bool) -> bool:
+        value = self.raw(key, default)
+        if not isinstance(value, bool):
+            raise self.fail(key, f"must be true or false, got {value!r}")
+        return value
+
+    def multiple(self, key: str, default: float, symbol: str, unit: float) -> float:
+        value = self.raw(key, default)
+        try:
+            return parse_multiple(value, symbol, unit)
+        except ValueError as exc:
+            raise self.fail(key, str(exc)) from None
+
+    def finish(self, allowed: tuple[str, ...] | None = None) -> None:
+        unknown = sorted(set(self.table) - self.used)
+        if unknown:
+            key = unknown[0]
+            pool = allowed if allowed is not None else tuple(sorted(self.used))
+            hint = _did_you_mean(key, pool)
+            raise self.fail(key, f"unknown key{hint}; allowed: {', '.join(sorted(pool))}")
+
+
+def _did_you_mean(word: str, options) -> str:
+    close = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _positive(value: float) -> str | None:
+    return None if value > 0 else "must be > 0"
+
+
+# ---------------------------------------------------------------- sections
+
+
+def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
+    sec = _Section(source, "system", doc.get("system", {}))
+    model = sec.choice("model", None, MODELS) if sec.has("model") else None
+    if model is None:
+        raise sec.fail("model", f"is required; one of {', '.join(map(repr, MODELS))}")
+    bodies = sec.integer("bodies", 2, 1, 2)
+    system = get_system(model, bodies)
+    body_params = [p for p in system.parameters if p.name not in ("d", "phi", "k_c", "c_c")]
+    values: dict[str, Any] = {}
+    for param in body_params:
+        values[param.name] = sec.number(param.name, param.default, param.check)
+    sec.finish(("model", "bodies") + tuple(p.name for p in body_params))
+    return system, values
+
+
+def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any]) -> None:
+    if system.bodies == 1:
+        if "coupling" in doc:
+            raise ConfigError(f"{source}: [coupling]: only for a pair; [system] bodies = 1 here")
+        return
+    sec = _Section(source, "coupling", doc.get("coupling", {}))
+    for param in system.parameters:
+        if param.name == "phi":
+            values["phi"] = sec.multiple("phi", param.default, "pi", math.pi)
+        elif param.name in ("d", "k_c", "c_c"):
+            values[param.name] = sec.number(param.name, param.default, param.check)
+    values["law"] = sec.choice("law", "paper", LAWS)
+    sec.finish(("d", "phi", "k_c", "c_c", "law"))
+
+
+def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
+    sec = _Section(source, "integrator", doc.get("integrator", {}))
+    d = IntegratorSettings()
+    settings = IntegratorSettings(
+        method=sec.choice("method", d.method, METHODS),
+        steps_per_period=sec.integer("steps_per_period", d.steps_per_period, 4),
+        locate_switches=sec.boolean("locate_switches", d.locate_switches),
+        rtol=sec.number("rtol", d.rtol, lambda v: None if 1e-14 <= v < 1 else "must be in [1e-14, 1)"),
+        atol=sec.number("atol", d.atol, _positive),
+        max_periods=sec.integer("max_periods", d.max_periods, 1),
+        max_orbit_period=sec.integer("max_orbit_period", d.max_orbit_period, 1, 1000),
+        convergence_tol=sec.number("convergence_tol", d.convergence_tol, _positive),
+        divergence_bound=sec.number("divergence_bound", d.divergence_bound, _positive),
+        max_steps_per_period=sec.integer("max_steps_per_period", d.max_steps_per_period, 10),
+        max_switches_per_period=sec.integer("max_switches_per_period",
+                                            d.max_switches_per_period, 2),
+    )
+    sec.finish()
+    return settings
+
+
+def _read_state(sec: _Section, key: str, system: System) -> tuple[float, ...]:
+    value = sec.raw(key)
+    names = ", ".join(system.state_names)
+    if not isinstance(value, list) or len(value) != system.dim:
+        raise sec.fail(key, f"must be a list of {system.dim} numbers ({names}), got {value!r}")
+    out = []
+    for v in value:
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+            raise sec.fail(key, f"must be a list of {system.dim} finite numbers ({names}), "
+                                f"got {value!r}")
+        out.append(float(v))
+    return tuple(out)
+
+
+def _read_analysis(source: str, doc: dict, system: System, period: float):
+    sec = _Section(source, "analysis", doc.get("analysis", {}))
+    kind = sec.choice("kind", "trajectory", ANALYSIS_KINDS)
+    if kind == "trajectory":
+        if not sec.has("state"):
+            raise sec.fail("state", f"is required: the initial {', '.join(system.state_names)}")
+        analysis = TrajectoryAnalysis(
+            kind=kind,
+            state=_read_state(sec, "state", system),
+            periods=sec.integer("periods", 200, 1, 10_000_000),
+            t0=sec.multiple("t0", 0.0, "T", period),
+            samples_per_period=sec.integer("samples_per_period", 64, 1, 100_000),
+        )
+    sec.finish()
+    return analysis
+
+
+def _read_output(source: str, doc: dict, base: Path) -> Path:
+    sec = _Section(source, "output", doc.get("output", {}))
+    stem = Path(source).stem if source != "<string>" else "scene"
+    value = sec.raw("path", f"results/{stem}.h5")
+    if not isinstance(value, str) or not value:
+        raise sec.fail("path", f"must be a file path string, got {value!r}")
+    sec.finish(("path",))
+    return Path(value)
+
+
+def check_writable(path: Path, source: str, key: str = "[output] path") -> None:
+    """Refuse an output path that cannot be written, before any work is done."""
+    if path.is_dir():
+        raise ConfigError(f"{source}: {key}: {str(path)!r} is a directory, not a file")
+    parent = path.parent if str(path.parent) else Path(".")
+    probe = parent
+    while not probe.exists():
+        probe = probe.parent
+    if not probe.is_dir() or not os.access(probe, os.W_OK | os.X_OK):
+        raise ConfigError(f"{source}: {key}: cannot write {str(path)!r} "
+                          f"({str(probe)!r} is not a writable directory)")
+    if path.exists() and not os.access(path, os.W_OK):
+        raise ConfigError(f"{source}: {key}: cannot write {str(path)!r} (not writable)")
+
+
+SECTIONS = ("system", "coupling", "integrator", "analysis", "output")
+
+
+def parse_scene(text: str, source: str = "<string>") -> Scene:
+    """Validate a scene given as TOML text; ``source`` names it in error messages."""
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{source}: invalid TOML: {exc}") from None
+    for name in doc:
+        if name not in SECTIONS or not isinstance(doc[name], dict):
+            hint = _did_you_mean(name, SECTIONS)
+            what = "unknown section" if name not in SECTIONS else "must be a table"
+            raise ConfigError(f"{source}: [{name}]: {what}{hint}; sections: "
+                              f"{', '.join(SECTIONS)}")
+    system, values = _read_system(source, doc)
+    _read_coupling(source, doc, system, values)
+    integrator = _read_integrator(source, doc)
+    period = 2.0 * math.pi / values["w"]
+    analysis = _read_analysis(source, doc, system, period)
+    output = _read_output(source, doc, Path("."))
+    return Scene(source=source, text=text, system=system, values=values,
+                 integrator=integrator, analysis=analysis, output=output,
+                 sections={k: dict(v) for k, v in doc.items()})
+
+
+def load_scene(path: str | os.PathLike) -> Scene:
+    """Read and validate the scene file at ``path``."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: no such scene file") from None
+    except IsADirectoryError:
+        raise ConfigError(f"{path}: is a directory, not a scene file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot read scene file ({exc.__class__.__name__})") from None
+    return parse_scene(text, str(path))

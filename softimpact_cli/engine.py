@@ -1,0 +1,154 @@
+"""From parameter values to kernel calls: the one place that packs arrays for the kernels.
+
+Analyses build a :class:`Problem` (a system at one parameter point with integrator
+settings) and call :func:`classify_state` or :func:`record_trajectory`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from .config import IntegratorSettings
+from .kernels import METHODS, layout, orbit
+from .kernels.status import outcome
+from .systems import Surfaces, System
+
+COUNTER_NAMES = ("mode", "steps", "rejected_steps", "rhs_evaluations", "switches", "contacts",
+                 "samples")
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A system at one parameter point, with the settings to integrate it."""
+
+    system: System
+    values: Mapping[str, Any]
+    integrator: IntegratorSettings = field(default_factory=IntegratorSettings)
+
+    def __post_init__(self):
+        object.__setattr__(self, "params", self.system.pack(self.values))
+        object.__setattr__(self, "surfaces", self.system.surfaces(self.params))
+
+    params: np.ndarray = field(init=False, repr=False, compare=False)
+    surfaces: Surfaces = field(init=False, repr=False, compare=False)
+
+    @property
+    def period(self) -> float:
+        """Forcing period T = 2 pi / w."""
+        return self.system.period(self.params)
+
+    def with_values(self, **changes) -> Problem:
+        return replace(self, values={**self.values, **changes})
+
+    def with_integrator(self, **changes) -> Problem:
+        return replace(self, integrator=replace(self.integrator, **changes))
+
+    def options(self, sample_dt: float = 0.0, sample_t0: float = 0.0) -> np.ndarray:
+        """The kernels' ``opts`` array (see ``kernels.layout``)."""
+        s = self.integrator
+        opts = np.zeros(layout.N_OPTS)
+        opts[layout.RTOL] = s.rtol
+        opts[layout.ATOL] = s.atol
+        opts[layout.H_FIXED] = self.period / s.steps_per_period
+        opts[layout.LOCATE] = 1.0 if s.locate_switches else 0.0
+        opts[layout.H_MAX] = self.period / 8.0  # keeps dense-output sampling of g fine enough
+        opts[layout.MAX_STEPS] = s.max_steps_per_period
+        opts[layout.BOUND] = s.divergence_bound
+        opts[layout.SAMPLE_DT] = sample_dt
+        opts[layout.SAMPLE_T0] = sample_t0
+        opts[layout.MAX_SWITCHES] = s.max_switches_per_period
+        return opts
+
+    @property
+    def advance(self):
+        return METHODS[self.integrator.resolved_method].advance
+
+    def kernel_args(self):
+        sf = self.surfaces
+        return sf.A, sf.b, sf.relevance, sf.contact
+
+
+@dataclass(frozen=True)
+class Classification:
+    """Outcome of one trajectory on the stroboscopic section.
+
+    orbit : (period, dim) section points of the final orbit in time order (empty unless
+    converged). max_penetration : max of x1 - x2 - d over the final orbit (> 0: the stop
+    is compressed; -inf when the system has no contact).
+    """
+
+    status: int
+    period: int
+    periods_used: int
+    orbit: np.ndarray
+    contacts: int
+    max_penetration: float
+    counters: dict[str, int]
+
+    @property
+    def outcome(self) -> str:
+        return outcome(self.status)
+
+    @property
+    def impacting(self) -> bool:
+        return self.status == 0 and self.max_penetration >= 0.0
+
+
+def classify_state(problem: Problem, state, t0: float = 0.0) -> Classification:
+    """Integrate from ``state`` imposed at time ``t0`` until classified."""
+    y0 = np.ascontiguousarray(state, dtype=np.float64)
+    s = problem.integrator
+    A, b, rel, contact = problem.kernel_args()
+    status, q, n_used, orbit_pts, contacts, max_g, counters = orbit.classify(
+        problem.advance, problem.system.rhs, problem.params, y0, float(t0), problem.period,
+        A, b, rel, contact, problem.options(), s.max_periods, s.max_orbit_period,
+        s.convergence_tol,
+    )
+    return Classification(
+        status=int(status), period=int(q), periods_used=int(n_used),
+        orbit=orbit_pts[:q].copy(), contacts=int(contacts), max_penetration=float(max_g),
+        counters=dict(zip(COUNTER_NAMES, map(int, counters), strict=True)),
+    )
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """A recorded trajectory.
+
+    t : (n_samples,) sample times; y : (n_samples, dim) dense samples;
+    section_t : (periods + 1,) stroboscopic times; section_y : (periods + 1, dim);
+    contacts : (periods + 1,) contact onsets per period (entry 0: before the first section);
+    max_g : (periods + 1,) max of x1 - x2 - d per period.
+    """
+
+    status: int
+    t: np.ndarray
+    y: np.ndarray
+    section_t: np.ndarray
+    section_y: np.ndarray
+    contacts: np.ndarray
+    max_g: np.ndarray
+    counters: dict[str, int]
+
+
+def record_trajectory(problem: Problem, state, t0: float, periods: int,
+                      samples_per_period: int) -> Trajectory:
+    """Integrate ``periods`` forcing periods from the first section at or after ``t0``,
+    sampling the dense output ``samples_per_period`` times per period from ``t0`` on."""
+    y0 = np.ascontiguousarray(state, dtype=np.float64)
+    T = problem.period
+    dt = T / samples_per_period
+    n0 = int(orbit.first_section(float(t0), T))
+    t_end = (n0 + periods) * T
+    capacity = int(np.floor((t_end - t0) / dt + 1e-9)) + 1
+    A, b, rel, contact = problem.kernel_args()
+    status, st, sy, n, sec_t, sec_y, contacts, max_g, counters = orbit.record(
+        problem.advance, problem.system.rhs, problem.params, y0, float(t0), T, int(periods),
+        A, b, rel, contact, problem.options(dt, float(t0)), capacity,
+    )
+    return Trajectory(int(status), st[:n], sy[:n], sec_t, sec_y, contacts, max_g,
+                      dict(zip(COUNTER_NAMES, map(int, counters), strict=True)))

@@ -1,0 +1,14 @@
+"""Numba kernels: integrate, locate switches, classify. Arrays in, arrays and codes out.
+
+Kernels import only numpy, numba and math; they never raise, print or touch files.
+Every integrator module provides ``advance`` with one signature, so the trajectory
+kernels take the method as a first-class function:
+
+    advance(rhs, p, y, t, t_end, A, b, relevance, contact, opts, istate, fstate, work,
+            sample_t, sample_y) -> status
+"""
+
+from . import dopri5, rk4
+
+# method name -> module (each has ``advance``, ``ORDER`` and its tableau)
+METHODS = {"rk4": rk4, "dopri5": dopri5}

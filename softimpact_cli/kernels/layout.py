@@ -1,0 +1,41 @@
+"""Index constants of the small arrays the kernels share (numba treats them as constants).
+
+``opts`` (float64): integrator options, built once per scene by ``engine.integrator_options``.
+``istate`` (int64) and ``fstate`` (float64): the integrator's running state and counters,
+carried across calls so that a trajectory can be advanced section by section.
+"""
+
+# opts
+RTOL = 0
+ATOL = 1
+H_FIXED = 2  # rk4: the step T / steps_per_period
+LOCATE = 3  # 1.0: locate every switch and restart there; 0.0: the plain (paper) scheme
+H_MAX = 4  # adaptive methods: largest step
+MAX_STEPS = 5  # step budget of one advance call (one forcing period)
+BOUND = 6  # |state| beyond this is "diverged"
+SAMPLE_DT = 7  # > 0: write dense samples every SAMPLE_DT
+SAMPLE_T0 = 8  # time of sample 0
+MAX_SWITCHES = 9  # switch budget of one advance call (chattering guard)
+N_OPTS = 10
+
+# istate
+MODE = 0
+N_STEPS = 1
+N_REJECTED = 2
+N_RHS = 3
+N_SWITCHES = 4
+N_CONTACTS = 5
+N_SAMPLES = 6
+N_ISTATE = 7
+
+# fstate
+H = 0  # the step the adaptive controller proposes next
+MAX_G = 1  # running max of the contact function x1 - x2 - d (reset per period by callers)
+N_FSTATE = 2
+
+# rows of the work array (shape (WORK_ROWS, dim))
+K0 = 0  # stages K0..K6 use rows 0..6
+YTMP = 7
+YNEW = 8
+M0 = 9  # monomial coefficients of the step's dense output, rows 9..13
+WORK_ROWS = 14

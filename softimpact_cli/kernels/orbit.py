@@ -1,0 +1,169 @@
+"""Trajectories on the stroboscopic section t_n = n T: classification and recording.
+
+``classify`` advances one forcing period at a time and stops as soon as the section
+points repeat with some period q <= max_orbit_period: the last 2q points satisfy
+``max_j |y_{n-j} - y_{n-j-q}|_inf <= tol * max(1, |y_n|_inf)`` for j < q, the smallest
+such q being the period. No fixed transient is integrated.
+"""
+
+from math import ceil
+
+import numpy as np
+from numba import njit
+
+from .layout import MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
+from .status import CONVERGED, OK, UNRESOLVED
+from .switching import mode_of
+
+
+@njit(cache=True)
+def first_section(t0, period):
+    """Index of the first section time n T >= t0 (t0 on a section maps to itself)."""
+    return int(ceil(t0 / period - 1e-9))
+
+
+@njit(cache=True)
+def new_state(y0, A_s, b_s):
+    dim = y0.shape[0]
+    istate = np.zeros(N_ISTATE, dtype=np.int64)
+    fstate = np.zeros(N_FSTATE)
+    fstate[MAX_G] = -np.inf
+    work = np.zeros((WORK_ROWS, dim))
+    istate[MODE] = mode_of(y0, A_s, b_s)
+    return istate, fstate, work
+
+
+@njit(cache=True)
+def _repeat_period(hist, n, depth, max_q, tol):
+    """Smallest q <= max_q with the last q points repeating after q; 0 if none."""
+    dim = hist.shape[1]
+    last = hist[n % depth]
+    scale = 1.0
+    for i in range(dim):
+        scale = max(scale, abs(last[i]))
+    lim = tol * scale
+    for q in range(1, max_q + 1):
+        if n < 2 * q:
+            break
+        ok = True
+        for j in range(q):
+            a = hist[(n - j) % depth]
+            b = hist[(n - j - q) % depth]
+            for i in range(dim):
+                if abs(a[i] - b[i]) > lim:
+                    ok = False
+                    break
+            if not ok:
+                break
+        if ok:
+            return q
+    return 0
+
+
+@njit(cache=True)
+def classify(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact, opts,
+             max_periods, max_orbit_period, tol):
+    """Integrate from (t0, y0) until the section points repeat, the budget ends or it fails.
+
+    Returns
+    -------
+    status : int (status table code)
+    q : int, period of the orbit in forcing periods (0 unless converged)
+    n_used : int, forcing periods integrated
+    orbit : (max_orbit_period, dim) array, rows 0..q-1 the orbit's section points in time order
+    contacts : int, contact onsets during the last q periods
+    max_g : float, max of the contact function x1 - x2 - d over the last q periods
+            (>= 0 means the orbit is in contact; -inf for systems without contact)
+    counters : (N_ISTATE,) int64 array of the integrator's counters
+    """
+    dim = y0.shape[0]
+    y = y0.copy()
+    istate, fstate, work = new_state(y, A_s, b_s)
+    empty_t = np.empty(0)
+    empty_y = np.empty((0, dim))
+    depth = 2 * max_orbit_period + 1
+    hist = np.empty((depth, dim))
+    contacts = np.zeros(depth, dtype=np.int64)
+    max_g = np.full(depth, -np.inf)
+    orbit = np.zeros((max_orbit_period, dim))
+    n0 = first_section(t0, period)
+    t = t0
+    if n0 * period > t:
+        status = advance(rhs, p, y, t, n0 * period, A_s, b_s, relevance, contact, opts,
+                         istate, fstate, work, empty_t, empty_y)
+        if status != OK:
+            return status, 0, 0, orbit, 0, -np.inf, istate
+    hist[0] = y
+    for n in range(1, max_periods + 1):
+        fstate[MAX_G] = -np.inf
+        if contact >= 0 and (istate[MODE] >> contact) & 1:
+            fstate[MAX_G] = 0.0  # a period that starts in contact is in contact
+        c_before = istate[N_CONTACTS]
+        t_start = (n0 + n - 1) * period
+        status = advance(rhs, p, y, t_start, t_start + period, A_s, b_s, relevance, contact,
+                         opts, istate, fstate, work, empty_t, empty_y)
+        if status != OK:
+            return status, 0, n, orbit, 0, -np.inf, istate
+        k = n % depth
+        hist[k] = y
+        contacts[k] = istate[N_CONTACTS] - c_before
+        max_g[k] = fstate[MAX_G]
+        q = _repeat_period(hist, n, depth, max_orbit_period, tol)
+        if q > 0:
+            total = 0
+            worst = -np.inf
+            for i in range(q):
+                kk = (n - q + 1 + i) % depth
+                orbit[i] = hist[kk]
+                total += contacts[kk]
+                worst = max(worst, max_g[kk])
+            return CONVERGED, q, n, orbit, total, worst, istate
+    return UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate
+
+
+@njit(cache=True)
+def record(advance, rhs, p, y0, t0, period, n_periods, A_s, b_s, relevance, contact, opts,
+           n_samples):
+    """Integrate n_periods forcing periods from (t0, y0), writing dense samples.
+
+    ``opts[SAMPLE_DT]``/``opts[SAMPLE_T0]`` set the sampling; ``n_samples`` is the capacity.
+    Returns (status, sample_t, sample_y, n_written, section_t, section_y, contacts per
+    period, max contact function per period, counters); section arrays have n_periods + 1
+    rows (row 0 is the first section at or after t0); rows after a failure are NaN.
+    """
+    dim = y0.shape[0]
+    y = y0.copy()
+    istate, fstate, work = new_state(y, A_s, b_s)
+    sample_t = np.full(n_samples, np.nan)
+    sample_y = np.full((n_samples, dim), np.nan)
+    section_t = np.full(n_periods + 1, np.nan)
+    section_y = np.full((n_periods + 1, dim), np.nan)
+    contacts = np.zeros(n_periods + 1, dtype=np.int64)
+    max_g = np.full(n_periods + 1, -np.inf)
+    n0 = first_section(t0, period)
+    t = t0
+    status = OK
+    if n0 * period > t:
+        status = advance(rhs, p, y, t, n0 * period, A_s, b_s, relevance, contact, opts,
+                         istate, fstate, work, sample_t, sample_y)
+    if status == OK:
+        section_t[0] = n0 * period
+        section_y[0] = y
+        contacts[0] = istate[N_CONTACTS]
+        max_g[0] = fstate[MAX_G]
+        for n in range(1, n_periods + 1):
+            fstate[MAX_G] = -np.inf
+            if contact >= 0 and (istate[MODE] >> contact) & 1:
+                fstate[MAX_G] = 0.0
+            c_before = istate[N_CONTACTS]
+            t_start = (n0 + n - 1) * period
+            status = advance(rhs, p, y, t_start, t_start + period, A_s, b_s, relevance,
+                             contact, opts, istate, fstate, work, sample_t, sample_y)
+            if status != OK:
+                break
+            section_t[n] = t_start + period
+            section_y[n] = y
+            contacts[n] = istate[N_CONTACTS] - c_before
+            max_g[n] = fstate[MAX_G]
+    return (status, sample_t, sample_y, istate[N_SAMPLES], section_t, section_y, contacts, max_g,
+            istate)

@@ -1,0 +1,9 @@
+"""The results store: datasets to HDF5 files that ``xarray.open_dataset`` reads back.
+
+Only this package imports h5py / h5netcdf.
+"""
+
+from .h5netcdf_ import open_result, write_result
+from .provenance import provenance
+
+__all__ = ["open_result", "provenance", "write_result"]

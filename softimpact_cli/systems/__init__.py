@@ -1,0 +1,35 @@
+"""Registered systems. See :mod:`softimpact_cli.systems.base` for the contract.
+
+To add a system, write a module that builds :class:`~.base.System` instances and add
+them to ``REGISTRY`` below; nothing in the kernels changes.
+"""
+
+from __future__ import annotations
+
+from .base import COUPLING_PARAMETERS, LAWS, Parameter, Surfaces, System
+from .bilinear import BILINEAR_BODY, BILINEAR_PAIR
+from .duffing import DUFFING_BODY, DUFFING_PAIR
+
+REGISTRY: dict[tuple[str, int], System] = {
+    ("duffing", 1): DUFFING_BODY,
+    ("duffing", 2): DUFFING_PAIR,
+    ("bilinear", 1): BILINEAR_BODY,
+    ("bilinear", 2): BILINEAR_PAIR,
+}
+
+MODELS = tuple(sorted({model for model, _ in REGISTRY}))
+
+
+def get_system(model: str, bodies: int) -> System:
+    """The registered system for ``model`` with ``bodies`` bodies (1 or 2)."""
+    try:
+        return REGISTRY[(model, bodies)]
+    except KeyError:
+        raise KeyError(
+            f"unknown system {model!r} with {bodies} bodies; valid models: {', '.join(MODELS)}, "
+            "bodies 1 or 2"
+        ) from None
+
+
+__all__ = ["COUPLING_PARAMETERS", "LAWS", "MODELS", "REGISTRY", "Parameter", "Surfaces",
+           "System", "get_system"]

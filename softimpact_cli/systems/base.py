@@ -1,0 +1,136 @@
+"""The contract every system fulfils, and the data it hands to the kernels.
+
+A system is data plus two small jitted functions. The kernels know nothing else of it:
+
+1. ``state_names``: names of the state variables, in kernel order (``x1, v1, x2, v2``
+   for a pair, ``x, v`` for one body). The dimension is ``len(state_names)``.
+2. ``parameters``: every parameter with unit, default and allowed range. Values reach
+   the kernels as one float64 array built by ``pack`` (so one compilation serves every
+   parameter value of a sweep).
+3. ``rhs(t, y, p, mode, out)``: the right-hand side in a given contact *mode*, written
+   into ``out``. ``mode`` is a bit mask: bit ``i`` is set when switching surface ``i`` is
+   on its engaged side (``g_i >= 0``). Within a mode the vector field is smooth.
+4. ``jacobian(t, y, p, mode, jac, dfdt)``: exact Jacobian ``d rhs / d y`` (shape
+   ``(dim, dim)``) and the explicit time derivative ``d rhs / d t`` (shape ``(dim,)``)
+   in a given mode, for the implicit integrators.
+5. ``surfaces(p)``: the switching surfaces, each affine in the state,
+   ``g_i(y) = A[i] @ y + b[i]``. Affine surfaces make ``g`` along a step's dense output
+   a polynomial, so crossings and grazing extrema are located exactly and cheaply.
+   A surface may be *relevant* only while another is engaged (the no-tension force
+   surface only matters in contact); ``relevance[mode]`` is the mask of surfaces the
+   kernel watches in that mode. ``contact`` is the index of the surface whose engaged
+   side is a contact between bodies (``-1`` for none): contacts and penetration are
+   counted on it.
+
+Adding a system (another restoring force, a Hertzian stop, a third body) means adding
+one module that builds a :class:`System` and registering it in ``systems/__init__.py``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One scalar model parameter.
+
+    ``minimum`` is the smallest allowed value; ``strict`` excludes it (``w > 0``).
+    """
+
+    name: str
+    unit: str
+    default: float | None
+    description: str
+    minimum: float = -np.inf
+    strict: bool = False
+
+    def check(self, value: float) -> str | None:
+        """Return what is wrong with ``value``, or None when it is allowed."""
+        if not np.isfinite(value):
+            return "must be a finite number"
+        if self.strict and value <= self.minimum:
+            return f"must be > {self.minimum:g}"
+        if value < self.minimum:
+            return f"must be >= {self.minimum:g}"
+        return None
+
+
+@dataclass(frozen=True)
+class Surfaces:
+    """Affine switching surfaces ``g = A @ y + b`` of one parameter point.
+
+    A : (n_surfaces, dim) float64
+    b : (n_surfaces,) float64
+    relevance : (2**n_surfaces,) int64, mask of watched surfaces per mode
+    contact : index of the body-body contact surface, or -1
+    names : one short name per surface
+    """
+
+    A: np.ndarray
+    b: np.ndarray
+    relevance: np.ndarray
+    contact: int
+    names: tuple[str, ...]
+
+
+def relevance_table(n_surfaces: int, requires: Mapping[int, int]) -> np.ndarray:
+    """Mask of watched surfaces per mode.
+
+    ``requires[i] = j`` means surface ``i`` is watched only while surface ``j`` is engaged.
+    """
+    table = np.zeros(2**n_surfaces, dtype=np.int64)
+    for mode in range(2**n_surfaces):
+        mask = 0
+        for i in range(n_surfaces):
+            j = requires.get(i, -1)
+            if j < 0 or mode & (1 << j):
+                mask |= 1 << i
+        table[mode] = mask
+    return table
+
+
+@dataclass(frozen=True)
+class System:
+    """A registered model: see the module docstring for the contract."""
+
+    model: str
+    bodies: int
+    description: str
+    state_names: tuple[str, ...]
+    parameters: tuple[Parameter, ...]
+    rhs: Callable
+    jacobian: Callable
+    pack: Callable[[Mapping[str, float]], np.ndarray]
+    surfaces: Callable[[np.ndarray], Surfaces]
+    forcing_frequency_index: int = 4
+    extra: Mapping[str, object] = field(default_factory=dict)
+
+    @property
+    def dim(self) -> int:
+        return len(self.state_names)
+
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        return tuple(p.name for p in self.parameters)
+
+    def defaults(self) -> dict[str, float]:
+        return {p.name: p.default for p in self.parameters if p.default is not None}
+
+    def period(self, packed: np.ndarray) -> float:
+        """Forcing period ``T = 2 pi / w`` (dimensionless time)."""
+        return 2.0 * np.pi / float(packed[self.forcing_frequency_index])
+
+
+# Coupling parameters shared by every pair (SPEC.md section 2).
+COUPLING_PARAMETERS = (
+    Parameter("d", "1", 6.0, "rest distance (gap) between the bodies", minimum=-np.inf),
+    Parameter("phi", "rad", 0.0, "phase shift of the right body's forcing"),
+    Parameter("k_c", "1", 8.0, "stiffness of the soft stop", minimum=0.0),
+    Parameter("c_c", "1", 10.0, "damping of the soft stop", minimum=0.0),
+)
+
+LAWS = ("paper", "no-tension")

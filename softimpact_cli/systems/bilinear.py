@@ -1,0 +1,176 @@
+"""Bilinear oscillators: one body alone, and the mirror-symmetric pair.
+
+Each body has a linear spring k1 and a second spring k2 engaged beyond a gap d1; the
+left body's second spring is on its left, the right body's on its right:
+
+    x1'' + c x1' + k1 x1 + k2 (x1 + d1) H(-x1 - d1) + F_C = F sin(w t)
+    x2'' + c x2' + k1 x2 + k2 (x2 - d1) H( x2 - d1) - F_C = F sin(w t + phi)
+
+The one-body system is the left body. Mirror symmetry: if x(t) solves the left body's
+equation, -x(t) solves the right body's with forcing shifted by pi.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from math import cos, sin
+
+import numpy as np
+from numba import njit
+
+from .base import COUPLING_PARAMETERS, LAWS, Parameter, Surfaces, System, relevance_table
+from .duffing import contact_surfaces
+
+BODY_PARAMETERS = (
+    Parameter("c", "1", 0.02, "viscous damping of each body", minimum=0.0),
+    Parameter("k1", "1", 1.0, "stiffness of the main spring", minimum=0.0),
+    Parameter("k2", "1", 29.0, "stiffness of the second spring, engaged beyond d1", minimum=0.0),
+    Parameter("F", "1", 0.518, "forcing amplitude", minimum=0.0),
+    Parameter("w", "1", 0.86, "forcing frequency", minimum=0.0, strict=True),
+    Parameter("d1", "1", 1.26, "gap before the second spring engages", minimum=0.0),
+)
+
+C, K1, K2, F, W, D1 = 0, 1, 2, 3, 4, 5
+D, KC, CC, COS_PHI, SIN_PHI, NO_TENSION, PHI = 6, 7, 8, 9, 10, 11, 12
+
+CONTACT_BIT = 1  # surface 0: x1 - x2 - d >= 0
+LEFT_SPRING_BIT = 2  # surface 1: -x1 - d1 >= 0
+RIGHT_SPRING_BIT = 4  # surface 2: x2 - d1 >= 0
+FORCE_BIT = 8  # surface 3 (no-tension law only)
+
+
+def pack_body(values: Mapping[str, float]) -> np.ndarray:
+    """Body parameters as the float64 array ``[c, k1, k2, F, w, d1]``."""
+    return np.array([float(values[p.name]) for p in BODY_PARAMETERS])
+
+
+def pack_pair(values: Mapping[str, float]) -> np.ndarray:
+    """Pair parameters: body block, then ``d, k_c, c_c, cos phi, sin phi, no_tension, phi``."""
+    phi = float(values["phi"])
+    law = values.get("law", "paper")
+    return np.concatenate(
+        [
+            pack_body(values),
+            [
+                float(values["d"]),
+                float(values["k_c"]),
+                float(values["c_c"]),
+                cos(phi),
+                sin(phi),
+                1.0 if law == "no-tension" else 0.0,
+                phi,
+            ],
+        ]
+    )
+
+
+@njit(cache=True)
+def body_rhs(t, y, p, mode, out):
+    x = y[0]
+    v = y[1]
+    spring = 0.0
+    if mode & 1:
+        spring = p[K2] * (x + p[D1])
+    out[0] = v
+    out[1] = p[F] * sin(p[W] * t) - p[C] * v - p[K1] * x - spring
+
+
+@njit(cache=True)
+def body_jacobian(t, y, p, mode, jac, dfdt):
+    jac[0, 0] = 0.0
+    jac[0, 1] = 1.0
+    jac[1, 0] = -p[K1] - (p[K2] if mode & 1 else 0.0)
+    jac[1, 1] = -p[C]
+    dfdt[0] = 0.0
+    dfdt[1] = p[F] * p[W] * cos(p[W] * t)
+
+
+@njit(cache=True)
+def contact_active(p, mode):
+    if not (mode & CONTACT_BIT):
+        return False
+    return p[NO_TENSION] == 0.0 or (mode & FORCE_BIT) != 0
+
+
+@njit(cache=True)
+def pair_rhs(t, y, p, mode, out):
+    wt = p[W] * t
+    s = sin(wt)
+    co = cos(wt)
+    x1 = y[0]
+    v1 = y[1]
+    x2 = y[2]
+    v2 = y[3]
+    fc = 0.0
+    if contact_active(p, mode):
+        fc = p[KC] * (x1 - x2 - p[D]) + p[CC] * (v1 - v2)
+    s1 = p[K2] * (x1 + p[D1]) if mode & LEFT_SPRING_BIT else 0.0
+    s2 = p[K2] * (x2 - p[D1]) if mode & RIGHT_SPRING_BIT else 0.0
+    out[0] = v1
+    out[1] = p[F] * s - p[C] * v1 - p[K1] * x1 - s1 - fc
+    out[2] = v2
+    out[3] = p[F] * (s * p[COS_PHI] + co * p[SIN_PHI]) - p[C] * v2 - p[K1] * x2 - s2 + fc
+
+
+@njit(cache=True)
+def pair_jacobian(t, y, p, mode, jac, dfdt):
+    a = 1.0 if contact_active(p, mode) else 0.0
+    kc = a * p[KC]
+    cc = a * p[CC]
+    jac[:, :] = 0.0
+    jac[0, 1] = 1.0
+    jac[2, 3] = 1.0
+    jac[1, 0] = -p[K1] - (p[K2] if mode & LEFT_SPRING_BIT else 0.0) - kc
+    jac[1, 1] = -p[C] - cc
+    jac[1, 2] = kc
+    jac[1, 3] = cc
+    jac[3, 0] = kc
+    jac[3, 1] = cc
+    jac[3, 2] = -p[K1] - (p[K2] if mode & RIGHT_SPRING_BIT else 0.0) - kc
+    jac[3, 3] = -p[C] - cc
+    wt = p[W] * t
+    fw = p[F] * p[W]
+    dfdt[0] = 0.0
+    dfdt[1] = fw * cos(wt)
+    dfdt[2] = 0.0
+    dfdt[3] = fw * (cos(wt) * p[COS_PHI] - sin(wt) * p[SIN_PHI])
+
+
+def pair_surfaces(p: np.ndarray) -> Surfaces:
+    return contact_surfaces(
+        p, D, KC, CC, NO_TENSION,
+        [[-1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]],
+        [-p[D1], -p[D1]],
+        ["left spring", "right spring"],
+    )
+
+
+def body_surfaces(p: np.ndarray) -> Surfaces:
+    return Surfaces(np.array([[-1.0, 0.0]]), np.array([-p[D1]]), relevance_table(1, {}), -1,
+                    ("spring",))
+
+
+BILINEAR_BODY = System(
+    model="bilinear",
+    bodies=1,
+    description="forced bilinear oscillator (second spring on the left, beyond d1)",
+    state_names=("x", "v"),
+    parameters=BODY_PARAMETERS,
+    rhs=body_rhs,
+    jacobian=body_jacobian,
+    pack=pack_body,
+    surfaces=body_surfaces,
+)
+
+BILINEAR_PAIR = System(
+    model="bilinear",
+    bodies=2,
+    description="two mirror-symmetric bilinear oscillators coupled by a spring-damper stop",
+    state_names=("x1", "v1", "x2", "v2"),
+    parameters=BODY_PARAMETERS + COUPLING_PARAMETERS,
+    rhs=pair_rhs,
+    jacobian=pair_jacobian,
+    pack=pack_pair,
+    surfaces=pair_surfaces,
+    extra={"laws": LAWS},
+)
