@@ -6,7 +6,7 @@ SI := $(VENV)/bin/softimpact
 STAMP := $(VENV)/.installed-stamp
 PYTEST_ARGS ?=
 
-.PHONY: install test test-nojit demo lint clean
+.PHONY: install test test-nojit demo lint clean catalogues fig04 fig10 fig13-catalogue
 
 install: $(STAMP)
 
@@ -27,6 +27,21 @@ demo: $(STAMP)
 	$(SI) sweep configs/trajectory_duffing.toml -o results/demo.h5 --overwrite
 	$(SI) plot trajectory results/demo.h5 -o results/demo.png
 	@echo "result: results/demo.h5   figure: results/demo.png   (softimpact info results/demo.h5)"
+
+# Attractor catalogues (figures 4, 9-10 and 13's single body): HDF5 + PNG under results/.
+catalogues: fig04 fig10 fig13-catalogue
+
+fig04: $(STAMP)
+	$(SI) sweep configs/fig04_duffing_catalogue.toml -o results/fig04.h5 --overwrite
+	$(SI) plot catalogue results/fig04.h5 -o results/fig04.png
+
+fig10: $(STAMP)
+	$(SI) sweep configs/fig10_bilinear_catalogue.toml -o results/fig10.h5 --overwrite
+	$(SI) plot catalogue results/fig10.h5 -o results/fig10.png
+
+fig13-catalogue: $(STAMP)
+	$(SI) sweep configs/fig13_bilinear_catalogue.toml -o results/fig13_catalogue.h5 --overwrite
+	$(SI) plot catalogue results/fig13_catalogue.h5 -o results/fig13_catalogue.png
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

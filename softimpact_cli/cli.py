@@ -42,6 +42,14 @@ def _open(path: str):
                           ) from None
 
 
+def _progress_bar(total: int):
+    """A tqdm bar on stderr when it is a terminal; returns its update function."""
+    from tqdm import tqdm
+
+    bar = tqdm(total=total, unit="ic", disable=not sys.stderr.isatty(), leave=False)
+    return bar.update
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="softimpact")
 def main():
@@ -65,8 +73,12 @@ def sweep(scene, output, overwrite):
     check_writable(out, scene if not output else "command line", key)
     if out.exists() and not overwrite:
         raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
-    ds = run_scene(sc)
+    ds = run_scene(sc, progress=_progress_bar)
     write_result(ds, out)
+    if ds.attrs.get("analysis") == "catalogue":
+        from .info import format_catalogue
+
+        click.echo(format_catalogue(ds))
     click.echo(f"{sc.analysis.kind}: {ds.attrs.get('outcome', 'done')}"
                + (f", period {ds.attrs['period']}" if ds.attrs.get("period") else "")
                + f" ({ds.attrs['wall_s']:.2f} s) -> {out}")
@@ -94,6 +106,23 @@ def plot_trajectory_cmd(result, output, last_periods):
                           "trajectory")
     check_writable(Path(output), "command line", "-o/--output")
     click.echo(f"figure -> {plot_trajectory(ds, output, last_periods)}")
+
+
+@plot.command("catalogue")
+@click.argument("result", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Figure file (.png, .pdf, .svg).")
+@_user_errors
+def plot_catalogue_cmd(result, output):
+    """Attractors on the phase plane and one panel per combination of a catalogue RESULT."""
+    from .plot.catalogue import plot_catalogue
+
+    ds = _open(result)
+    if ds.attrs.get("analysis") != "catalogue":
+        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not a "
+                          "catalogue")
+    check_writable(Path(output), "command line", "-o/--output")
+    click.echo(f"figure -> {plot_catalogue(ds, output)}")
 
 
 @main.command()

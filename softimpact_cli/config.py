@@ -20,7 +20,7 @@ from typing import Any
 from .expressions import parse_multiple, parse_phase
 from .systems import LAWS, MODELS, System, get_system
 
-ANALYSIS_KINDS = ("trajectory",)
+ANALYSIS_KINDS = ("trajectory", "catalogue")
 METHODS = ("auto", "rk4", "dopri5")
 
 
@@ -59,6 +59,23 @@ class TrajectoryAnalysis:
     periods: int = 200
     t0: float = 0.0
     samples_per_period: int = 64
+
+
+@dataclass(frozen=True)
+class CatalogueAnalysis:
+    """[analysis] kind = "catalogue": the one-body attractors (and a pair's combinations).
+
+    Initial conditions: a ``grid`` x ``grid`` lattice plus ``random`` uniform samples over
+    ``box`` (x and v ranges), imposed at ``t0``.
+    """
+
+    kind: str
+    box: Mapping[str, tuple[float, float]]
+    grid: int = 16
+    random: int = 200
+    seed: int = 0
+    t0: float = 0.0
+    match_tol: float = 1e-3
 
 
 @dataclass(frozen=True)
@@ -245,8 +262,42 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
             t0=sec.multiple("t0", 0.0, "T", period),
             samples_per_period=sec.integer("samples_per_period", 64, 1, 100_000),
         )
+    elif kind == "catalogue":
+        analysis = CatalogueAnalysis(
+            kind=kind,
+            box=_read_box(sec, "box", system.extra["catalogue_box"], ("x", "v")),
+            grid=sec.integer("grid", 16, 0, 2000),
+            random=sec.integer("random", 200, 0, 10_000_000),
+            seed=sec.integer("seed", 0, 0),
+            t0=sec.multiple("t0", 0.0, "T", period),
+            match_tol=sec.number("match_tol", 1e-3, _positive),
+        )
+        if analysis.grid == 0 and analysis.random == 0:
+            raise sec.fail("grid", "grid and random are both 0: no initial conditions")
     sec.finish()
     return analysis
+
+
+def _read_box(sec: _Section, key: str, default, names: tuple[str, ...]):
+    """A box {name = [lo, hi], ...} over state variables; missing names take the default."""
+    value = sec.raw(key, {})
+    if not isinstance(value, dict):
+        raise sec.fail(key, f"must be a table like {{{names[0]} = [-1, 1]}}, got {value!r}")
+    box = {}
+    for name in value:
+        if name not in names:
+            raise sec.fail(f"{key}.{name}", f"is not a state variable; allowed: "
+                                           f"{', '.join(names)}")
+    for name in names:
+        lo_hi = value.get(name, default[name])
+        ok = (isinstance(lo_hi, list | tuple) and len(lo_hi) == 2
+              and all(isinstance(v, int | float) and not isinstance(v, bool)
+                      and math.isfinite(v) for v in lo_hi))
+        if not ok or not lo_hi[0] < lo_hi[1]:
+            raise sec.fail(f"{key}.{name}", f"must be [low, high] with low < high, got "
+                                           f"{lo_hi!r}")
+        box[name] = (float(lo_hi[0]), float(lo_hi[1]))
+    return box
 
 
 def _read_output(source: str, doc: dict, base: Path) -> Path:

@@ -115,6 +115,15 @@ def classify_state(problem: Problem, state, t0: float = 0.0) -> Classification:
     )
 
 
+def flow(problem: Problem, state, t0: float, t1: float) -> tuple[int, np.ndarray, float]:
+    """(status, state at t1, max of the contact function on [t0, t1]) from ``state`` at t0."""
+    y0 = np.ascontiguousarray(state, dtype=np.float64)
+    A, b, rel, contact = problem.kernel_args()
+    status, y, max_g, _ = orbit.flow(problem.advance, problem.system.rhs, problem.params, y0,
+                                     float(t0), float(t1), A, b, rel, contact, problem.options())
+    return int(status), y, float(max_g)
+
+
 @dataclass(frozen=True)
 class Trajectory:
     """A recorded trajectory.

@@ -29,5 +29,48 @@ def describe(ds) -> dict:
     if "orbit" in ds:
         out["orbit"] = _plain(ds["orbit"].values)
         out["variables"] = [str(v) for v in ds["variable"].values]
+    if ds.attrs.get("analysis") == "catalogue":
+        out.update(catalogue_summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}
+
+
+def catalogue_summary(ds) -> dict:
+    """Attractors (number, period, amplitude, multipliers, share, points) and combinations."""
+    attractors = []
+    for i, number in enumerate(ds["attractor"].values):
+        p = int(ds["attractor_period"].values[i])
+        re, im = ds["multiplier_re"].values[i], ds["multiplier_im"].values[i]
+        attractors.append({
+            "number": int(number),
+            "name": str(ds["attractor_name"].values[i]),
+            "period": p,
+            "amplitude": float(ds["attractor_amplitude"].values[i]),
+            "multipliers": [[float(a), float(b)] for a, b in zip(re, im, strict=True)
+                            if np.isfinite(a)],
+            "share": float(ds["attractor_share"].values[i]),
+            "residual": float(ds["attractor_residual"].values[i]),
+            "points": ds["attractor_points"].values[i, :p].tolist(),
+        })
+    out = {"attractors": attractors,
+           "counts": {k[6:]: int(v) for k, v in ds.attrs.items() if k.startswith("count_")}}
+    if "combination_name" in ds:
+        out["combinations"] = [str(n) for n in ds["combination_name"].values]
+    return out
+
+
+def format_catalogue(ds) -> str:
+    """A plain-text table of a catalogue result."""
+    summary = catalogue_summary(ds)
+    lines = [f"{'attractor':10s} {'period':>6s} {'amplitude':>10s} {'|multipliers|':>20s} "
+             f"{'share':>7s} {'residual':>9s}"]
+    for a in summary["attractors"]:
+        mods = ", ".join(f"{np.hypot(*m):.4f}" for m in a["multipliers"])
+        lines.append(f"{a['name']:10s} {a['period']:6d} {a['amplitude']:10.4f} {mods:>20s} "
+                     f"{a['share']:7.3f} {a['residual']:9.1e}")
+    counts = summary["counts"]
+    lines.append("samples: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+    if "combinations" in summary:
+        names = summary["combinations"]
+        lines.append(f"combinations ({len(names)}): " + ", ".join(names))
+    return "\n".join(lines)

@@ -14,8 +14,12 @@ def problem_of(scene: Scene) -> Problem:
     return Problem(scene.system, scene.values, scene.integrator)
 
 
-def run_scene(scene: Scene) -> xr.Dataset:
-    """Run the scene's analysis and return its dataset with provenance attributes."""
+def run_scene(scene: Scene, progress=None) -> xr.Dataset:
+    """Run the scene's analysis and return its dataset with provenance attributes.
+
+    ``progress(total)`` may return a callable that is called with the number of units
+    done (the CLI passes a tqdm bar); analyses never print.
+    """
     from .store import provenance
 
     started = time.time()
@@ -26,6 +30,14 @@ def run_scene(scene: Scene) -> xr.Dataset:
 
         ds = trajectory_dataset(problem_of(scene), a.state, a.t0, a.periods,
                                 a.samples_per_period)
+    elif a.kind == "catalogue":
+        from .analysis.catalogue import build_catalogue, catalogue_dataset, sample_states
+
+        states = sample_states(a.box, a.grid, a.random, a.seed)
+        tick = progress(len(states)) if progress else None
+        cat = build_catalogue(scene.system, dict(scene.values), scene.integrator, states, a.t0,
+                              a.match_tol, tick)
+        ds = catalogue_dataset(cat, scene.system, scene.integrator)
     else:  # config only admits known kinds
         raise AssertionError(f"unhandled analysis kind {a.kind!r}")
     wall = time.perf_counter() - t0

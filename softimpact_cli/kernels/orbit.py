@@ -3,7 +3,8 @@
 ``classify`` advances one forcing period at a time and stops as soon as the section
 points repeat with some period q <= max_orbit_period: the last 2q points satisfy
 ``max_j |y_{n-j} - y_{n-j-q}|_inf <= tol * max(1, |y_n|_inf)`` for j < q, the smallest
-such q being the period. No fixed transient is integrated.
+such q being the period, provided no proper divisor of q nearly repeats as well (see
+``_repeat_period``). No fixed transient is integrated.
 """
 
 from math import ceil
@@ -33,9 +34,30 @@ def new_state(y0, A_s, b_s):
     return istate, fstate, work
 
 
+DISTINCT = 100.0  # sub-period differences below DISTINCT * tol mean "still converging"
+
+
+@njit(cache=True)
+def _repeat_distance(hist, n, depth, q, span):
+    """max over j < span of |y_{n-j} - y_{n-j-q}|_inf."""
+    dim = hist.shape[1]
+    worst = 0.0
+    for j in range(span):
+        a = hist[(n - j) % depth]
+        b = hist[(n - j - q) % depth]
+        for i in range(dim):
+            worst = max(worst, abs(a[i] - b[i]))
+    return worst
+
+
 @njit(cache=True)
 def _repeat_period(hist, n, depth, max_q, tol):
-    """Smallest q <= max_q with the last q points repeating after q; 0 if none."""
+    """Smallest q <= max_q with the last q points repeating after q; 0 if none yet.
+
+    A candidate q is refused while a proper divisor r of q nearly repeats too (distance
+    below DISTINCT * tol): the trajectory is then still spiralling into the period-r orbit
+    (complex multipliers near a q-th root of unity make y_n - y_{n-q} small first).
+    """
     dim = hist.shape[1]
     last = hist[n % depth]
     scale = 1.0
@@ -45,18 +67,12 @@ def _repeat_period(hist, n, depth, max_q, tol):
     for q in range(1, max_q + 1):
         if n < 2 * q:
             break
-        ok = True
-        for j in range(q):
-            a = hist[(n - j) % depth]
-            b = hist[(n - j - q) % depth]
-            for i in range(dim):
-                if abs(a[i] - b[i]) > lim:
-                    ok = False
-                    break
-            if not ok:
-                break
-        if ok:
-            return q
+        if _repeat_distance(hist, n, depth, q, q) > lim:
+            continue
+        for r in range(1, q):
+            if q % r == 0 and _repeat_distance(hist, n, depth, r, q) <= DISTINCT * lim:
+                return 0
+        return q
     return 0
 
 
@@ -167,3 +183,15 @@ def record(advance, rhs, p, y0, t0, period, n_periods, A_s, b_s, relevance, cont
             max_g[n] = fstate[MAX_G]
     return (status, sample_t, sample_y, istate[N_SAMPLES], section_t, section_y, contacts, max_g,
             istate)
+
+
+@njit(cache=True)
+def flow(advance, rhs, p, y0, t0, t1, A_s, b_s, relevance, contact, opts):
+    """State at t1 of the trajectory through (t0, y0). Returns (status, y, max_g, counters)."""
+    y = y0.copy()
+    istate, fstate, work = new_state(y, A_s, b_s)
+    status = OK
+    if t1 > t0:
+        status = advance(rhs, p, y, t0, t1, A_s, b_s, relevance, contact, opts, istate, fstate,
+                         work, np.empty(0), np.empty((0, y.shape[0])))
+    return status, y, fstate[MAX_G], istate

@@ -107,6 +107,8 @@ class System:
     pack: Callable[[Mapping[str, float]], np.ndarray]
     surfaces: Callable[[np.ndarray], Surfaces]
     forcing_frequency_index: int = 4
+    # For a pair: the right body's solutions are right_sign * x_left(t + (phi - right_phase)/w)
+    # (a time shift for identical bodies; a mirror and a half-period shift for mirrored ones).
     extra: Mapping[str, object] = field(default_factory=dict)
 
     @property

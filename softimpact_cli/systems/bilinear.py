@@ -30,6 +30,9 @@ BODY_PARAMETERS = (
     Parameter("d1", "1", 1.26, "gap before the second spring engages", minimum=0.0),
 )
 
+# Default box of (x, v) the catalogue samples: wide enough for every attractor.
+CATALOGUE_BOX = {"x": (-3.0, 3.0), "v": (-3.0, 3.0)}
+
 C, K1, K2, F, W, D1 = 0, 1, 2, 3, 4, 5
 D, KC, CC, COS_PHI, SIN_PHI, NO_TENSION, PHI = 6, 7, 8, 9, 10, 11, 12
 
@@ -160,6 +163,7 @@ BILINEAR_BODY = System(
     jacobian=body_jacobian,
     pack=pack_body,
     surfaces=body_surfaces,
+    extra={"catalogue_box": CATALOGUE_BOX},
 )
 
 BILINEAR_PAIR = System(
@@ -172,5 +176,5 @@ BILINEAR_PAIR = System(
     jacobian=pair_jacobian,
     pack=pack_pair,
     surfaces=pair_surfaces,
-    extra={"laws": LAWS},
+    extra={"catalogue_box": CATALOGUE_BOX, "laws": LAWS, "right_sign": -1.0, "right_phase": np.pi},
 )

@@ -26,6 +26,9 @@ BODY_PARAMETERS = (
     Parameter("w", "1", 1.3, "forcing frequency", minimum=0.0, strict=True),
 )
 
+# Default box of (x, v) the catalogue samples: wide enough for every attractor.
+CATALOGUE_BOX = {"x": (-12.0, 12.0), "v": (-12.0, 12.0)}
+
 # Packed parameter layout (indices into the float64 array the kernels receive).
 C, K1, K2, F, W = 0, 1, 2, 3, 4
 D, KC, CC, COS_PHI, SIN_PHI, NO_TENSION, PHI = 5, 6, 7, 8, 9, 10, 11
@@ -167,6 +170,7 @@ DUFFING_BODY = System(
     jacobian=body_jacobian,
     pack=pack_body,
     surfaces=body_surfaces,
+    extra={"catalogue_box": CATALOGUE_BOX},
 )
 
 DUFFING_PAIR = System(
@@ -179,5 +183,5 @@ DUFFING_PAIR = System(
     jacobian=pair_jacobian,
     pack=pack_pair,
     surfaces=pair_surfaces,
-    extra={"laws": LAWS},
+    extra={"catalogue_box": CATALOGUE_BOX, "laws": LAWS, "right_sign": 1.0, "right_phase": 0.0},
 )

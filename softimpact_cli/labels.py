@@ -1,0 +1,110 @@
+"""The study's names for solutions (SPEC.md section 3), their parser, and the shift rule.
+
+ASCII names:
+
+- ``L{p}^{n}``: one body on its attractor number n of period p (one-body scenes);
+- ``L{pl}^{nl} R{pr}-{s}^{nr}``: the pair, left body on attractor nl (period pl), right body
+  on attractor nr (period pr), relative shift s;
+- ``impacting P{p}``: a periodic solution with contact in the steady state, period p;
+- ``unresolved``, ``diverged``: outcomes that are not periodic orbits;
+- ``unmatched P{p}``: a non-impacting periodic orbit that matches no catalogue attractor.
+
+**The shift s.** Each body's attractor has its p section points ordered canonically:
+point 0 is the one with the largest displacement x, point i+1 is the stroboscopic map's
+image of point i. At a section time, if the left body sits at index j and the right body
+at index k, then ``s = (k - j) mod gcd(pl, pr)``. Both indices advance by one per forcing
+period, so s is the same at every section time of the orbit, and there are exactly
+``gcd(pl, pr)`` distinct combinations of two attractors.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from math import gcd
+
+UNRESOLVED = "unresolved"
+DIVERGED = "diverged"
+
+
+@dataclass(frozen=True)
+class Label:
+    """A parsed name. ``kind``: 'body', 'pair', 'impacting', 'unmatched', 'unresolved',
+    'diverged'."""
+
+    kind: str
+    period: int = 0
+    left: int = 0
+    right_period: int = 0
+    shift: int = 0
+    right: int = 0
+
+    @property
+    def name(self) -> str:
+        if self.kind == "pair":
+            return (f"L{self.period}^{self.left} "
+                    f"R{self.right_period}-{self.shift}^{self.right}")
+        if self.kind == "body":
+            return f"L{self.period}^{self.left}"
+        if self.kind in ("impacting", "unmatched"):
+            return f"{self.kind} P{self.period}"
+        return self.kind
+
+    @property
+    def latex(self) -> str:
+        if self.kind == "pair":
+            return (f"$L^{{{self.left}}}_{{{self.period}}}"
+                    f"R^{{{self.right}}}_{{{self.right_period}-{self.shift}}}$")
+        if self.kind == "body":
+            return f"$L^{{{self.left}}}_{{{self.period}}}$"
+        if self.kind in ("impacting", "unmatched"):
+            return f"{self.kind} $P_{{{self.period}}}$"
+        return self.kind
+
+
+_PAIR = re.compile(r"^L(\d+)\^(\d+) R(\d+)-(\d+)\^(\d+)$")
+_BODY = re.compile(r"^L(\d+)\^(\d+)$")
+_PERIODIC = re.compile(r"^(impacting|unmatched) P(\d+)$")
+
+
+def parse_label(name: str) -> Label:
+    """Parse an ASCII name; ValueError names the allowed forms."""
+    if m := _PAIR.match(name):
+        pl, nl, pr, s, nr = map(int, m.groups())
+        if min(pl, nl, pr, nr) < 1 or s >= gcd(pl, pr):
+            raise ValueError(f"{name!r}: periods and numbers start at 1 and the shift must "
+                             f"be < gcd({pl}, {pr}) = {gcd(pl, pr)}")
+        return Label("pair", pl, nl, pr, s, nr)
+    if m := _BODY.match(name):
+        p, n = map(int, m.groups())
+        if min(p, n) < 1:
+            raise ValueError(f"{name!r}: period and number start at 1")
+        return Label("body", p, n)
+    if m := _PERIODIC.match(name):
+        if int(m.group(2)) < 1:
+            raise ValueError(f"{name!r}: the period starts at 1")
+        return Label(m.group(1), int(m.group(2)))
+    if name in (UNRESOLVED, DIVERGED):
+        return Label(name)
+    raise ValueError(
+        f"cannot read label {name!r}: use 'L1^1 R1-0^2' (pair), 'L2^1' (one body), "
+        "'impacting P3', 'unmatched P3', 'unresolved' or 'diverged'"
+    )
+
+
+def n_shifts(left_period: int, right_period: int) -> int:
+    """Number of distinct relative shifts of two periodic orbits: gcd(pl, pr)."""
+    return gcd(left_period, right_period)
+
+
+def shift(left_index: int, right_index: int, left_period: int, right_period: int) -> int:
+    """The shift s = (k - j) mod gcd(pl, pr) of bodies at canonical indices j (left), k."""
+    return (right_index - left_index) % gcd(left_period, right_period)
+
+
+def latex_of(name: str) -> str:
+    """LaTeX form of a name (the name itself when it does not parse)."""
+    try:
+        return parse_label(name).latex
+    except ValueError:
+        return name

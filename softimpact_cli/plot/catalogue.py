@@ -1,0 +1,89 @@
+"""Catalogue figures: the one-body attractors (figs 4, 9) and the combinations (fig 10)."""
+
+from __future__ import annotations
+
+from math import ceil
+from pathlib import Path
+
+import numpy as np
+
+from ..labels import latex_of
+from . import pyplot
+from .palette import colour_of
+
+
+def plot_catalogue(ds, out: str | Path) -> Path:
+    """Left: attractors on (x, x') with section points. Right: one panel per combination,
+    x1(t) and x2(t) over the joint period, section times marked."""
+    plt = pyplot()
+    names = [str(n) for n in ds["attractor_name"].values]
+    combos = [str(n) for n in ds["combination_name"].values] if "combination_name" in ds else []
+    ncols = 4 if combos else 1
+    nrows_c = ceil(len(combos) / (ncols - 1)) if combos else 0
+    nrows = max(1, nrows_c, 2 if combos else 1)
+    fig = plt.figure(figsize=(4.0 * ncols, 2.6 * nrows + 0.6), constrained_layout=True)
+    grid = fig.add_gridspec(nrows, ncols)
+    ax = fig.add_subplot(grid[:, 0] if combos else grid[0, 0])
+    spp = int(ds.attrs["curve_samples_per_period"])
+    for i, name in enumerate(names):
+        p = int(ds["attractor_period"].values[i])
+        curve = ds["attractor_curve"].values[i, : p * spp]
+        pts = ds["attractor_points"].values[i, :p]
+        c = colour_of(name)
+        ax.plot(curve[:, 0], curve[:, 1], color=c, lw=1.2, label=latex_of(name))
+        ax.plot(pts[:, 0], pts[:, 1], "o", ms=6, color=c, mec="k", zorder=3)
+        for k, (x, v) in enumerate(pts):
+            ax.annotate(str(k), (x, v), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        if "right_curve" in ds:
+            rc = ds["right_curve"].values[i, : p * spp]
+            rp = ds["right_points"].values[i, :p]
+            ax.plot(rc[:, 0], rc[:, 1], color=c, lw=0.8, ls="--")
+            ax.plot(rp[:, 0], rp[:, 1], "s", ms=4, color=c, mec="k", zorder=3)
+    ax.set_xlabel("$x$")
+    ax.set_ylabel(r"$\dot x$")
+    title = "attractors (dots: $t = nT$, numbered in canonical order)"
+    if "right_curve" in ds:
+        title += "\nsolid/circles: left body, dashed/squares: right body"
+    ax.set_title(title, fontsize=8)
+    ax.legend(fontsize=8, loc="best")
+    T = float(ds.attrs["forcing_period"])
+    for n, cname in enumerate(combos):
+        r, c = divmod(n, ncols - 1)
+        cax = fig.add_subplot(grid[r, 1 + c])
+        i_l = list(ds["attractor"].values).index(int(ds["combination_left"].values[n]))
+        i_r = list(ds["attractor"].values).index(int(ds["combination_right"].values[n]))
+        s = int(ds["combination_shift"].values[n])
+        q = int(ds["combination_period"].values[n])
+        pl = int(ds["attractor_period"].values[i_l])
+        pr = int(ds["attractor_period"].values[i_r])
+        idx = np.arange(q * spp)
+        x1 = ds["attractor_curve"].values[i_l, idx % (pl * spp), 0]
+        x2 = ds["right_curve"].values[i_r, (idx + s * spp) % (pr * spp), 0]
+        t = idx / spp
+        cax.plot(t, x1, color="tab:blue", lw=1, label="$x_1$")
+        cax.plot(t, x2, color="tab:red", lw=1, label="$x_2$")
+        orbit = ds["combination_orbit"].values[n, :q]
+        cax.plot(np.arange(q), orbit[:, 0], "o", ms=3, color="tab:blue")
+        cax.plot(np.arange(q), orbit[:, 2], "s", ms=3, color="tab:red")
+        cax.set_title(latex_of(cname), fontsize=10)
+        for spine in cax.spines.values():  # the label's colour, as in the basin figures
+            spine.set_edgecolor(colour_of(cname))
+            spine.set_linewidth(2.0)
+        cax.set_xlabel("$t/T$", fontsize=8)
+        cax.tick_params(labelsize=7)
+        if n == 0:
+            cax.legend(fontsize=7, loc="upper right")
+    phi = ds.attrs.get("phi")
+    fig.suptitle(_title(ds) + (f", $\\varphi = {phi:.4g}$" if phi is not None else "")
+                 + f" — T = {T:.4g}", fontsize=10)
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
+def _title(ds) -> str:
+    params = str(ds.attrs.get("parameters", "")).split(", ")
+    body = [p for p in params if p.split("=")[0] in ("c", "k1", "k2", "F", "w", "d1")]
+    return f"{ds.attrs.get('model', '')} catalogue: " + ", ".join(body)
