@@ -24,7 +24,6 @@ from .dense import write_samples
 from .layout import (
     ATOL,
     BOUND,
-    H,
     H_MAX,
     K0,
     LOCATE,
@@ -38,8 +37,9 @@ from .layout import (
     RTOL,
     YNEW,
     YTMP,
+    H,
 )
-from .status import OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES, DIVERGED
+from .status import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
 from .switching import earliest_exit, mode_of
 
 ORDER = 5

@@ -105,9 +105,8 @@ def pair_rhs(t, y, p, mode, out):
     out[0] = v1
     out[1] = p[F] * s - p[C] * v1 - p[K1] * x1 - p[K2] * x1 * x1 * x1 - fc
     out[2] = v2
-    out[3] = (
-        p[F] * (s * p[COS_PHI] + co * p[SIN_PHI]) - p[C] * v2 - p[K1] * x2 - p[K2] * x2 * x2 * x2 + fc
-    )
+    forcing2 = p[F] * (s * p[COS_PHI] + co * p[SIN_PHI])
+    out[3] = forcing2 - p[C] * v2 - p[K1] * x2 - p[K2] * x2 * x2 * x2 + fc
 
 
 @njit(cache=True)

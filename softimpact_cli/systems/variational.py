@@ -14,11 +14,11 @@ compiled once per process rather than cached on disk.
 from __future__ import annotations
 
 from dataclasses import replace
+
 import numpy as np
 from numba import njit
 
 from .base import Surfaces, System
-
 
 _BUILT: dict[tuple[str, int], System] = {}
 

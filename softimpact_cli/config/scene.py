@@ -7,25 +7,20 @@ key, and what is allowed. Unknown sections and keys are errors, never ignored.
 
 from __future__ import annotations
 
-import difflib
 import hashlib
 import math
 import os
 import tomllib
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .expressions import parse_multiple, parse_phase
-from .systems import LAWS, MODELS, System, get_system
+from ..systems import LAWS, MODELS, System, get_system
+from .reader import ConfigError, Section, did_you_mean, positive
 
 ANALYSIS_KINDS = ("trajectory", "catalogue")
 METHODS = ("auto", "rk4", "dopri5")
-
-
-class ConfigError(ValueError):
-    """A user error in a scene or on the command line; the message is one line."""
 
 
 @dataclass(frozen=True)
@@ -94,98 +89,11 @@ class Scene:
         return hashlib.sha256(self.text.encode()).hexdigest()
 
 
-# ---------------------------------------------------------------- small checkers
-
-
-class _Section:
-    """Reads keys of one TOML table, tracking which ones were used."""
-
-    def __init__(self, source: str, name: str, table: Mapping[str, Any]):
-        self.source = source
-        self.name = name
-        self.table = dict(table)
-        self.used: set[str] = set()
-
-    def fail(self, key: str | None, problem: str) -> ConfigError:
-        where = f"[{self.name}]" + (f" {key}" if key else "")
-        return ConfigError(f"{self.source}: {where}: {problem}")
-
-    def has(self, key: str) -> bool:
-        return key in self.table
-
-    def raw(self, key: str, default: Any = None) -> Any:
-        self.used.add(key)
-        return self.table.get(key, default)
-
-    def number(self, key: str, default: float | None, check: Callable[[float], str | None]
-               | None = None) -> float:
-        value = self.raw(key, default)
-        if value is None:
-            raise self.fail(key, "is required (a number)")
-        if isinstance(value, bool) or not isinstance(value, int | float):
-            raise self.fail(key, f"must be a number, got {value!r}")
-        value = float(value)
-        if not math.isfinite(value):
-            raise self.fail(key, f"must be a finite number, got {value!r}")
-        if check is not None:
-            problem = check(value)
-            if problem:
-                raise self.fail(key, f"{problem}, got {value!r}")
-        return value
-
-    def integer(self, key: str, default: int, minimum: int, maximum: int | None = None) -> int:
-        value = self.raw(key, default)
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise self.fail(key, f"must be a whole number, got {value!r}")
-        if value < minimum or (maximum is not None and value > maximum):
-            allowed = f">= {minimum}" if maximum is None else f"in {minimum}..{maximum}"
-            raise self.fail(key, f"must be {allowed}, got {value!r}")
-        return value
-
-    def choice(self, key: str, default: str, allowed: tuple[str, ...]) -> str:
-        value = self.raw(key, default)
-        if value not in allowed:
-            hint = _did_you_mean(str(value), allowed)
-            raise self.fail(key, f"must be one of {', '.join(map(repr, allowed))}, got "
-                                 f"{value!r}{hint}")
-        return value
-
-    def boolean(self, key: str, default: bool) -> bool:
-        value = self.raw(key, default)
-        if not isinstance(value, bool):
-            raise self.fail(key, f"must be true or false, got {value!r}")
-        return value
-
-    def multiple(self, key: str, default: float, symbol: str, unit: float) -> float:
-        value = self.raw(key, default)
-        try:
-            return parse_multiple(value, symbol, unit)
-        except ValueError as exc:
-            raise self.fail(key, str(exc)) from None
-
-    def finish(self, allowed: tuple[str, ...] | None = None) -> None:
-        unknown = sorted(set(self.table) - self.used)
-        if unknown:
-            key = unknown[0]
-            pool = allowed if allowed is not None else tuple(sorted(self.used))
-            hint = _did_you_mean(key, pool)
-            raise self.fail(key, f"unknown key{hint}; allowed: {', '.join(sorted(pool))}")
-
-
-def _did_you_mean(word: str, options) -> str:
-    close = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
-    return f" (did you mean {close[0]!r}?)" if close else ""
-
-
-def _positive(value: float) -> str | None:
-    return None if value > 0 else "must be > 0"
-
-
 # ---------------------------------------------------------------- sections
 
 
 def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
-    sec = _Section(source, "system", doc.get("system", {}))
+    sec = Section(source, "system", doc.get("system", {}))
     model = sec.choice("model", None, MODELS) if sec.has("model") else None
     if model is None:
         raise sec.fail("model", f"is required; one of {', '.join(map(repr, MODELS))}")
@@ -204,7 +112,7 @@ def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any
         if "coupling" in doc:
             raise ConfigError(f"{source}: [coupling]: only for a pair; [system] bodies = 1 here")
         return
-    sec = _Section(source, "coupling", doc.get("coupling", {}))
+    sec = Section(source, "coupling", doc.get("coupling", {}))
     for param in system.parameters:
         if param.name == "phi":
             values["phi"] = sec.multiple("phi", param.default, "pi", math.pi)
@@ -215,18 +123,19 @@ def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any
 
 
 def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
-    sec = _Section(source, "integrator", doc.get("integrator", {}))
+    sec = Section(source, "integrator", doc.get("integrator", {}))
     d = IntegratorSettings()
     settings = IntegratorSettings(
         method=sec.choice("method", d.method, METHODS),
         steps_per_period=sec.integer("steps_per_period", d.steps_per_period, 4),
         locate_switches=sec.boolean("locate_switches", d.locate_switches),
-        rtol=sec.number("rtol", d.rtol, lambda v: None if 1e-14 <= v < 1 else "must be in [1e-14, 1)"),
-        atol=sec.number("atol", d.atol, _positive),
+        rtol=sec.number("rtol", d.rtol,
+                        lambda v: None if 1e-14 <= v < 1 else "must be in [1e-14, 1)"),
+        atol=sec.number("atol", d.atol, positive),
         max_periods=sec.integer("max_periods", d.max_periods, 1),
         max_orbit_period=sec.integer("max_orbit_period", d.max_orbit_period, 1, 1000),
-        convergence_tol=sec.number("convergence_tol", d.convergence_tol, _positive),
-        divergence_bound=sec.number("divergence_bound", d.divergence_bound, _positive),
+        convergence_tol=sec.number("convergence_tol", d.convergence_tol, positive),
+        divergence_bound=sec.number("divergence_bound", d.divergence_bound, positive),
         max_steps_per_period=sec.integer("max_steps_per_period", d.max_steps_per_period, 10),
         max_switches_per_period=sec.integer("max_switches_per_period",
                                             d.max_switches_per_period, 2),
@@ -235,7 +144,7 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
     return settings
 
 
-def _read_state(sec: _Section, key: str, system: System) -> tuple[float, ...]:
+def _read_state(sec: Section, key: str, system: System) -> tuple[float, ...]:
     value = sec.raw(key)
     names = ", ".join(system.state_names)
     if not isinstance(value, list) or len(value) != system.dim:
@@ -250,7 +159,7 @@ def _read_state(sec: _Section, key: str, system: System) -> tuple[float, ...]:
 
 
 def _read_analysis(source: str, doc: dict, system: System, period: float):
-    sec = _Section(source, "analysis", doc.get("analysis", {}))
+    sec = Section(source, "analysis", doc.get("analysis", {}))
     kind = sec.choice("kind", "trajectory", ANALYSIS_KINDS)
     if kind == "trajectory":
         if not sec.has("state"):
@@ -270,7 +179,7 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
             random=sec.integer("random", 200, 0, 10_000_000),
             seed=sec.integer("seed", 0, 0),
             t0=sec.multiple("t0", 0.0, "T", period),
-            match_tol=sec.number("match_tol", 1e-3, _positive),
+            match_tol=sec.number("match_tol", 1e-3, positive),
         )
         if analysis.grid == 0 and analysis.random == 0:
             raise sec.fail("grid", "grid and random are both 0: no initial conditions")
@@ -278,7 +187,7 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
     return analysis
 
 
-def _read_box(sec: _Section, key: str, default, names: tuple[str, ...]):
+def _read_box(sec: Section, key: str, default, names: tuple[str, ...]):
     """A box {name = [lo, hi], ...} over state variables; missing names take the default."""
     value = sec.raw(key, {})
     if not isinstance(value, dict):
@@ -301,28 +210,13 @@ def _read_box(sec: _Section, key: str, default, names: tuple[str, ...]):
 
 
 def _read_output(source: str, doc: dict, base: Path) -> Path:
-    sec = _Section(source, "output", doc.get("output", {}))
+    sec = Section(source, "output", doc.get("output", {}))
     stem = Path(source).stem if source != "<string>" else "scene"
     value = sec.raw("path", f"results/{stem}.h5")
     if not isinstance(value, str) or not value:
         raise sec.fail("path", f"must be a file path string, got {value!r}")
     sec.finish(("path",))
     return Path(value)
-
-
-def check_writable(path: Path, source: str, key: str = "[output] path") -> None:
-    """Refuse an output path that cannot be written, before any work is done."""
-    if path.is_dir():
-        raise ConfigError(f"{source}: {key}: {str(path)!r} is a directory, not a file")
-    parent = path.parent if str(path.parent) else Path(".")
-    probe = parent
-    while not probe.exists():
-        probe = probe.parent
-    if not probe.is_dir() or not os.access(probe, os.W_OK | os.X_OK):
-        raise ConfigError(f"{source}: {key}: cannot write {str(path)!r} "
-                          f"({str(probe)!r} is not a writable directory)")
-    if path.exists() and not os.access(path, os.W_OK):
-        raise ConfigError(f"{source}: {key}: cannot write {str(path)!r} (not writable)")
 
 
 SECTIONS = ("system", "coupling", "integrator", "analysis", "output")
@@ -336,7 +230,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         raise ConfigError(f"{source}: invalid TOML: {exc}") from None
     for name in doc:
         if name not in SECTIONS or not isinstance(doc[name], dict):
-            hint = _did_you_mean(name, SECTIONS)
+            hint = did_you_mean(name, SECTIONS)
             what = "unknown section" if name not in SECTIONS else "must be a table"
             raise ConfigError(f"{source}: [{name}]: {what}{hint}; sections: "
                               f"{', '.join(SECTIONS)}")
