@@ -6,7 +6,7 @@ SI := $(VENV)/bin/softimpact
 STAMP := $(VENV)/.installed-stamp
 PYTEST_ARGS ?=
 
-.PHONY: install test test-nojit demo lint clean catalogues fig04 fig10 fig13-catalogue
+.PHONY: install test test-nojit demo trajectory lint clean catalogues fig04 fig10 fig13-catalogue
 
 install: $(STAMP)
 
@@ -23,10 +23,15 @@ test: $(STAMP)
 test-nojit: $(STAMP)
 	NUMBA_DISABLE_JIT=1 $(PY) -m pytest -x -k "not slow" $(PYTEST_ARGS)
 
+# The main job on a default scene: a 100 x 100 coupled-Duffing basin (figure 6(d) setting).
 demo: $(STAMP)
-	$(SI) sweep configs/trajectory_duffing.toml -o results/demo.h5 --overwrite
-	$(SI) plot trajectory results/demo.h5 -o results/demo.png
+	$(SI) sweep configs/demo_basins.toml -o results/demo.h5 --overwrite
+	$(SI) plot basins results/demo.h5 -o results/demo.png
 	@echo "result: results/demo.h5   figure: results/demo.png   (softimpact info results/demo.h5)"
+
+trajectory: $(STAMP)
+	$(SI) sweep configs/trajectory_duffing.toml -o results/trajectory.h5 --overwrite
+	$(SI) plot trajectory results/trajectory.h5 -o results/trajectory.png
 
 # Attractor catalogues (figures 4, 9-10 and 13's single body): HDF5 + PNG under results/.
 catalogues: fig04 fig10 fig13-catalogue

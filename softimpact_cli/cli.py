@@ -42,11 +42,12 @@ def _open(path: str):
                           ) from None
 
 
-def _progress_bar(total: int):
-    """A tqdm bar on stderr when it is a terminal; returns its update function."""
+def _progress_bar(total: int, initial: int = 0):
+    """A tqdm bar on stderr (points/s, ETA) when it is a terminal; returns its update."""
     from tqdm import tqdm
 
-    bar = tqdm(total=total, unit="ic", disable=not sys.stderr.isatty(), leave=False)
+    bar = tqdm(total=total, initial=initial, unit="ic", disable=not sys.stderr.isatty(),
+               leave=False, smoothing=0.1)
     return bar.update
 
 
@@ -56,14 +57,35 @@ def main():
     """softimpact: multistability of oscillators coupled through soft impacts."""
 
 
+def _scheduler(ctx, param, value):
+    if value is None:
+        return None
+    if value.startswith("local:"):
+        n = value.split(":", 1)[1]
+        if not n.isdigit() or int(n) < 1:
+            raise click.BadParameter("use local:N with N >= 1 workers, or tcp://HOST:PORT")
+    elif not value.startswith(("tcp://", "tls://", "inproc://", "ucx://")):
+        raise click.BadParameter("use tcp://HOST:PORT (a Dask scheduler) or local:N")
+    return value
+
+
 @main.command()
 @click.argument("scene", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Result file (overrides [output] path).")
 @click.option("--overwrite", is_flag=True, help="Replace an existing result file.")
+@click.option("--resume", is_flag=True, help="Finish an interrupted sweep of the same scene.")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Local worker processes (default: all cores).")
+@click.option("--scheduler", callback=_scheduler, default=None,
+              help="Dask scheduler: tcp://HOST:PORT, or local:N to start a LocalCluster.")
+@click.option("--chunk-size", type=click.IntRange(min=1), default=None,
+              help="Trajectories per chunk (default: about 16 chunks per worker).")
+@click.option("-q", "--quiet", is_flag=True, help="No plan, no progress bar.")
 @_user_errors
-def sweep(scene, output, overwrite):
+def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet):
     """Run SCENE (a TOML file) and write its result to HDF5."""
+    from .config import SWEEP_KINDS
     from .run import run_scene
     from .store import write_result
 
@@ -71,9 +93,21 @@ def sweep(scene, output, overwrite):
     out = Path(output) if output else sc.output
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)
+    echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
+    if sc.analysis.kind in SWEEP_KINDS:
+        from .sweep import run_sweep
+
+        ds = run_sweep(sc, out, workers=workers, scheduler=scheduler, resume=resume,
+                       overwrite=overwrite, chunk_size=chunk_size, echo=echo,
+                       progress=None if quiet else _progress_bar)
+        click.echo(f"{sc.analysis.kind}: {ds.attrs['n']} trajectories "
+                   f"({ds.attrs['wall_s']:.1f} s) -> {out}")
+        return
+    if resume:
+        raise ConfigError(f"{scene}: --resume is for sweeps (kind basins or stability)")
     if out.exists() and not overwrite:
         raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
-    ds = run_scene(sc, progress=_progress_bar)
+    ds = run_scene(sc, progress=None if quiet else _progress_bar)
     write_result(ds, out)
     if ds.attrs.get("analysis") == "catalogue":
         from .info import format_catalogue
@@ -108,6 +142,27 @@ def plot_trajectory_cmd(result, output, last_periods):
     click.echo(f"figure -> {plot_trajectory(ds, output, last_periods)}")
 
 
+@plot.command("basins")
+@click.argument("result", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Figure file (.png, .pdf, .svg).")
+@click.option("--max-panels", type=click.IntRange(min=1), default=36, show_default=True,
+              help="Largest number of grid points drawn as panels.")
+@_user_errors
+def plot_basins_cmd(result, output, max_panels):
+    """Basins of attraction of a plane sweep RESULT, one panel per grid point."""
+    from .plot.basins import plot_basins
+
+    ds = _open(result)
+    if ds.attrs.get("ic_kind") != "plane" or int(ds.attrs.get("complete", 0)) != 1:
+        raise ConfigError(f"{result}: not a complete sweep over a plane of initial conditions")
+    check_writable(Path(output), "command line", "-o/--output")
+    try:
+        click.echo(f"figure -> {plot_basins(ds, output, max_panels)}")
+    except ValueError as exc:
+        raise ConfigError(f"{result}: {exc}") from None
+
+
 @plot.command("catalogue")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
@@ -131,15 +186,27 @@ def plot_catalogue_cmd(result, output):
 @_user_errors
 def info(result, as_json):
     """What RESULT holds: scene, status, period, contacts, wall time."""
-    from .info import describe
+    from .info import describe, incomplete_summary
+    from .store.sweep_store import SweepStore
 
-    summary = describe(_open(result))
+    ds = _open(result)
+    if int(ds.attrs.get("complete", 1)) == 0:
+        summary = incomplete_summary(ds, len(SweepStore(result).done()))
+    else:
+        summary = describe(ds)
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
     scene = summary.pop("scene", "")
+    points = summary.pop("points", None)
     for key, value in summary.items():
         click.echo(f"{key:28s} {value}")
+    for point in (points or [])[:50]:
+        where = ", ".join(f"{a}={point[a]:.6g}" for a in ("d", "phi", "k_c", "c_c", "t0"))
+        shares = ", ".join(f"{n} {f:.3f}" for n, f in sorted(point["fractions"].items()))
+        click.echo(f"  {where}: {shares}")
+    if points and len(points) > 50:
+        click.echo(f"  ... {len(points) - 50} more points (--json lists all)")
     click.echo("scene:")
     for line in scene.splitlines():
         click.echo(f"  {line}")

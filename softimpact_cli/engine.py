@@ -100,7 +100,7 @@ class Classification:
 
 def classify_state(problem: Problem, state, t0: float = 0.0) -> Classification:
     """Integrate from ``state`` imposed at time ``t0`` until classified."""
-    y0 = np.ascontiguousarray(state, dtype=np.float64)
+    y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
     s = problem.integrator
     A, b, rel, contact = problem.kernel_args()
     status, q, n_used, orbit_pts, contacts, max_g, counters = orbit.classify(
@@ -117,7 +117,7 @@ def classify_state(problem: Problem, state, t0: float = 0.0) -> Classification:
 
 def flow(problem: Problem, state, t0: float, t1: float) -> tuple[int, np.ndarray, float]:
     """(status, state at t1, max of the contact function on [t0, t1]) from ``state`` at t0."""
-    y0 = np.ascontiguousarray(state, dtype=np.float64)
+    y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
     A, b, rel, contact = problem.kernel_args()
     status, y, max_g, _ = orbit.flow(problem.advance, problem.system.rhs, problem.params, y0,
                                      float(t0), float(t1), A, b, rel, contact, problem.options())
@@ -148,7 +148,7 @@ def record_trajectory(problem: Problem, state, t0: float, periods: int,
                       samples_per_period: int) -> Trajectory:
     """Integrate ``periods`` forcing periods from the first section at or after ``t0``,
     sampling the dense output ``samples_per_period`` times per period from ``t0`` on."""
-    y0 = np.ascontiguousarray(state, dtype=np.float64)
+    y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
     T = problem.period
     dt = T / samples_per_period
     n0 = int(orbit.first_section(float(t0), T))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 SUMMARY_KEYS = (
+    "n", "n_chunks", "plan", "executor", "t0_mode",
     "analysis", "model", "bodies", "parameters", "outcome", "status_message", "period",
     "periods_used", "contacts_on_orbit", "max_penetration", "impacting", "t0",
     "integrator_resolved_method", "integrator_rtol", "integrator_atol",
@@ -31,6 +32,8 @@ def describe(ds) -> dict:
         out["variables"] = [str(v) for v in ds["variable"].values]
     if ds.attrs.get("analysis") == "catalogue":
         out.update(catalogue_summary(ds))
+    if "label" in ds and "label_code" in ds:
+        out.update(sweep_summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}
 
@@ -74,3 +77,47 @@ def format_catalogue(ds) -> str:
         names = summary["combinations"]
         lines.append(f"combinations ({len(names)}): " + ", ".join(names))
     return "\n".join(lines)
+
+
+GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
+
+
+def sweep_summary(ds) -> dict:
+    """Label table, per-grid-point counts and fractions, and status totals of a sweep."""
+    codes = [int(c) for c in ds["label_code"].values]
+    names = [str(n) for n in ds["label_name"].values]
+    table = dict(zip(codes, names, strict=True))
+    ic_dims = str(ds.attrs.get("ic_dims", "")).split()
+    label = ds["label"].transpose(*GRID_AXES, *ic_dims).values
+    grid_shape = label.shape[:5]
+    flat = label.reshape(int(np.prod(grid_shape)), -1)
+    points = []
+    for k, index in enumerate(np.ndindex(*grid_shape)):
+        values, counts = np.unique(flat[k], return_counts=True)
+        n = flat.shape[1]
+        point = {a: float(ds[a].values[i]) for a, i in zip(GRID_AXES, index, strict=True)}
+        point["counts"] = {table[int(v)]: int(c) for v, c in zip(values, counts, strict=True)}
+        point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
+        points.append(point)
+    status = ds["status"].values
+    from .kernels.status import STATUS_TABLE
+
+    totals = {"converged": 0, "unresolved": 0, "diverged": 0}
+    for code, count in zip(*np.unique(status, return_counts=True), strict=True):
+        totals[STATUS_TABLE[int(code)][0]] += int(count)
+    return {"complete": bool(int(ds.attrs.get("complete", 0))),
+            "n": int(ds.attrs.get("n", label.size)),
+            "wall_s": float(ds.attrs.get("wall_s", np.nan)),
+            "labels": {str(c): n for c, n in table.items()},
+            "points": points, "status": totals}
+
+
+def incomplete_summary(header, done: int) -> dict:
+    """What an unfinished sweep file says: its plan and how far it got."""
+    total = int(header.attrs.get("n_chunks", 0))
+    return {"complete": False, "analysis": header.attrs.get("analysis"),
+            "n": int(header.attrs.get("n", 0)), "plan": header.attrs.get("plan"),
+            "progress": {"chunks_done": done, "chunks": total,
+                         "fraction": done / total if total else 0.0},
+            "scene_source": header.attrs.get("scene_source"),
+            "scene": header.attrs.get("scene_text", "")}

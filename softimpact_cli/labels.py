@@ -102,6 +102,48 @@ def shift(left_index: int, right_index: int, left_period: int, right_period: int
     return (right_index - left_index) % gcd(left_period, right_period)
 
 
+# Integer codes (stored in sweep results). Catalogue solutions take 0, 1, ... in catalogue
+# order; the others are fixed by kind and period, so every chunk and every worker assigns
+# the same code to the same solution without coordination.
+PENDING = -9  # not computed yet (never in a complete result)
+DIVERGED_CODE = -3
+UNRESOLVED_CODE = -2
+IMPACTING_BASE = 1000  # impacting P{p} -> 1000 + p
+UNMATCHED_BASE = 2000  # unmatched P{p} -> 2000 + p
+
+
+def code_of(label: Label, catalogue_names: tuple[str, ...]) -> int:
+    """Integer code of a label, given the catalogue's names in code order."""
+    if label.kind in ("pair", "body"):
+        name = label.name
+        if name in catalogue_names:
+            return catalogue_names.index(name)
+        return UNMATCHED_BASE + label.period  # a catalogue from other parameters
+    if label.kind == "impacting":
+        return IMPACTING_BASE + label.period
+    if label.kind == "unmatched":
+        return UNMATCHED_BASE + label.period
+    return UNRESOLVED_CODE if label.kind == UNRESOLVED else DIVERGED_CODE
+
+
+def name_of(code: int, catalogue_names: tuple[str, ...]) -> str:
+    """The ASCII name of an integer code."""
+    code = int(code)
+    if 0 <= code < len(catalogue_names):
+        return catalogue_names[code]
+    if code == UNRESOLVED_CODE:
+        return UNRESOLVED
+    if code == DIVERGED_CODE:
+        return DIVERGED
+    if code == PENDING:
+        return "pending"
+    if UNMATCHED_BASE < code < UNMATCHED_BASE + 1000:
+        return f"unmatched P{code - UNMATCHED_BASE}"
+    if IMPACTING_BASE < code < IMPACTING_BASE + 1000:
+        return f"impacting P{code - IMPACTING_BASE}"
+    raise ValueError(f"unknown label code {code}")
+
+
 def latex_of(name: str) -> str:
     """LaTeX form of a name (the name itself when it does not parse)."""
     try:

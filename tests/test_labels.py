@@ -51,3 +51,22 @@ def test_latex():
 def test_bad_labels(bad):
     with pytest.raises(ValueError):
         parse_label(bad)
+
+
+@given(st.sampled_from(["impacting", "unmatched"]), st.integers(1, 999))
+def test_codes_round_trip(kind, p):
+    from softimpact_cli.labels import code_of, name_of
+
+    names = ("L1^1 R1-0^1", "L1^1 R1-0^2")
+    label = Label(kind, p)
+    assert name_of(code_of(label, names), names) == label.name
+
+
+def test_catalogue_codes_follow_catalogue_order():
+    from softimpact_cli.labels import code_of, name_of
+
+    names = ("L2^1 R2-0^1", "L2^1 R2-1^1", "L2^1 R5-0^2")
+    for i, n in enumerate(names):
+        assert code_of(parse_label(n), names) == i and name_of(i, names) == n
+    for special in ("unresolved", "diverged"):
+        assert name_of(code_of(parse_label(special), names), names) == special

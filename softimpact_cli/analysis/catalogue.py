@@ -94,6 +94,14 @@ class Catalogue:
     counts: dict[str, int]
     n_samples: int
 
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Names of the catalogue's solutions in code order: combinations for a pair,
+        attractors for one body."""
+        if self.right:
+            return tuple(c.name for c in self.combinations)
+        return tuple(a.name for a in self.attractors)
+
     def combination(self, name: str) -> Combination:
         for combo in self.combinations:
             if combo.name == name:
@@ -268,12 +276,16 @@ def match_point(attractors, point: np.ndarray, tol: float):
 
 def label_orbit(catalogue: Catalogue, orbit: np.ndarray, impacting: bool,
                 tol: float = 1e-3) -> Label:
-    """Name a converged orbit of the pair (orbit: (q, 4) section points, time order)."""
+    """Name a converged orbit (q, 4) of the pair, or (q, 2) of one body (time order)."""
     q = orbit.shape[0]
     if impacting:
         return Label("impacting", q)
     last = orbit[-1]
     a, j = match_point(catalogue.attractors, last[:2], tol)
+    if orbit.shape[1] == 2:
+        if a is None or q != a.period:
+            return Label("unmatched", q)
+        return Label("body", a.period, a.number)
     b, k = match_point(catalogue.right, last[2:], tol)
     if a is None or b is None or q != a.period * b.period // gcd(a.period, b.period):
         return Label("unmatched", q)

@@ -12,13 +12,18 @@ key, and what is allowed. Unknown sections and keys are errors, never ignored.
 from .reader import ConfigError, check_writable
 from .scene import (
     ANALYSIS_KINDS,
+    SWEEP_KINDS,
     CatalogueAnalysis,
     IntegratorSettings,
     Scene,
+    SweepAnalysis,
     TrajectoryAnalysis,
     load_scene,
     parse_scene,
 )
+from .sweep import GRID_AXES, GRID_UNITS, CatalogueSettings, Grid, InitialConditions
 
-__all__ = ["ANALYSIS_KINDS", "CatalogueAnalysis", "ConfigError", "IntegratorSettings", "Scene",
-           "TrajectoryAnalysis", "check_writable", "load_scene", "parse_scene"]
+__all__ = ["ANALYSIS_KINDS", "GRID_AXES", "GRID_UNITS", "SWEEP_KINDS", "CatalogueAnalysis",
+           "CatalogueSettings", "ConfigError", "Grid", "InitialConditions",
+           "IntegratorSettings", "Scene", "SweepAnalysis", "TrajectoryAnalysis",
+           "check_writable", "load_scene", "parse_scene"]

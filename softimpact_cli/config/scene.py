@@ -18,8 +18,18 @@ from typing import Any
 
 from ..systems import LAWS, MODELS, System, get_system
 from .reader import ConfigError, Section, did_you_mean, positive
+from .sweep import (
+    CatalogueSettings,
+    Grid,
+    InitialConditions,
+    read_box,
+    read_catalogue,
+    read_grid,
+    read_initial_conditions,
+)
 
-ANALYSIS_KINDS = ("trajectory", "catalogue")
+ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability")
+SWEEP_KINDS = ("basins", "stability")
 METHODS = ("auto", "rk4", "dopri5")
 
 
@@ -74,6 +84,15 @@ class CatalogueAnalysis:
 
 
 @dataclass(frozen=True)
+class SweepAnalysis:
+    """[analysis] kind = "basins" | "stability": every initial condition of
+    [initial_conditions] at every point of [grid], classified and labelled."""
+
+    kind: str
+    label_tol: float = 1e-3
+
+
+@dataclass(frozen=True)
 class Scene:
     source: str
     text: str
@@ -83,6 +102,9 @@ class Scene:
     analysis: Any
     output: Path
     sections: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    grid: Grid | None = None
+    initial_conditions: InitialConditions | None = None
+    catalogue: CatalogueSettings | None = None
 
     @property
     def sha256(self) -> str:
@@ -174,7 +196,7 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
     elif kind == "catalogue":
         analysis = CatalogueAnalysis(
             kind=kind,
-            box=_read_box(sec, "box", system.extra["catalogue_box"], ("x", "v")),
+            box=read_box(sec, "box", ("x", "v"), system.extra["catalogue_box"]),
             grid=sec.integer("grid", 16, 0, 2000),
             random=sec.integer("random", 200, 0, 10_000_000),
             seed=sec.integer("seed", 0, 0),
@@ -183,30 +205,10 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
         )
         if analysis.grid == 0 and analysis.random == 0:
             raise sec.fail("grid", "grid and random are both 0: no initial conditions")
+    elif kind in SWEEP_KINDS:
+        analysis = SweepAnalysis(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
     sec.finish()
     return analysis
-
-
-def _read_box(sec: Section, key: str, default, names: tuple[str, ...]):
-    """A box {name = [lo, hi], ...} over state variables; missing names take the default."""
-    value = sec.raw(key, {})
-    if not isinstance(value, dict):
-        raise sec.fail(key, f"must be a table like {{{names[0]} = [-1, 1]}}, got {value!r}")
-    box = {}
-    for name in value:
-        if name not in names:
-            raise sec.fail(f"{key}.{name}", f"is not a state variable; allowed: "
-                                           f"{', '.join(names)}")
-    for name in names:
-        lo_hi = value.get(name, default[name])
-        ok = (isinstance(lo_hi, list | tuple) and len(lo_hi) == 2
-              and all(isinstance(v, int | float) and not isinstance(v, bool)
-                      and math.isfinite(v) for v in lo_hi))
-        if not ok or not lo_hi[0] < lo_hi[1]:
-            raise sec.fail(f"{key}.{name}", f"must be [low, high] with low < high, got "
-                                           f"{lo_hi!r}")
-        box[name] = (float(lo_hi[0]), float(lo_hi[1]))
-    return box
 
 
 def _read_output(source: str, doc: dict, base: Path) -> Path:
@@ -219,7 +221,8 @@ def _read_output(source: str, doc: dict, base: Path) -> Path:
     return Path(value)
 
 
-SECTIONS = ("system", "coupling", "integrator", "analysis", "output")
+SECTIONS = ("system", "coupling", "integrator", "analysis", "output", "grid",
+            "initial_conditions", "catalogue")
 
 
 def parse_scene(text: str, source: str = "<string>") -> Scene:
@@ -240,9 +243,31 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     period = 2.0 * math.pi / values["w"]
     analysis = _read_analysis(source, doc, system, period)
     output = _read_output(source, doc, Path("."))
+    grid = initial = catalogue = None
+    if analysis.kind in SWEEP_KINDS:
+        grid = read_grid(source, doc, values, system.bodies, period,
+                         lambda axis, v: _check_axis(system, axis, v))
+        initial = read_initial_conditions(source, doc, system.state_names, period,
+                                          "t0" in grid.swept)
+        catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
+    else:
+        for name in ("grid", "initial_conditions", "catalogue"):
+            if name in doc:
+                raise ConfigError(f"{source}: [{name}]: only for the analyses "
+                                  f"{', '.join(SWEEP_KINDS)}; kind is {analysis.kind!r}")
     return Scene(source=source, text=text, system=system, values=values,
                  integrator=integrator, analysis=analysis, output=output,
-                 sections={k: dict(v) for k, v in doc.items()})
+                 sections={k: dict(v) for k, v in doc.items()}, grid=grid,
+                 initial_conditions=initial, catalogue=catalogue)
+
+
+def _check_axis(system: System, axis: str, value: float) -> str | None:
+    if axis == "t0":
+        return None if value >= 0 else "must be >= 0"
+    for param in system.parameters:
+        if param.name == axis:
+            return param.check(value)
+    return None
 
 
 def load_scene(path: str | os.PathLike) -> Scene:

@@ -8,7 +8,11 @@ kernels take the method as a first-class function:
             sample_t, sample_y) -> status
 """
 
-from . import dopri5, rk4
+from . import common, dense, dopri5, orbit, rk4, switching
+from .numba_cache import stabilise
+
+for _module in (common, dense, dopri5, orbit, rk4, switching):
+    stabilise(_module)
 
 # method name -> module (each has ``advance``, ``ORDER`` and its tableau)
 METHODS = {"rk4": rk4, "dopri5": dopri5}
