@@ -48,6 +48,30 @@ fig13-catalogue: $(STAMP)
 	$(SI) sweep configs/fig13_bilinear_catalogue.toml -o results/fig13_catalogue.h5 --overwrite
 	$(SI) plot catalogue results/fig13_catalogue.h5 -o results/fig13_catalogue.png
 
+# Basin figures (SPEC.md section 5). QUICK=1 runs every scene at low resolution (for CI).
+QUICK ?=
+QUICKFLAG := $(if $(QUICK),--quick,)
+BASIN_FIGS := fig03 fig06 fig09 fig12 fig13 fig14ab fig14cd
+FIGURES := $(BASIN_FIGS)
+
+figures: catalogues $(FIGURES)
+
+fig03: configs/figures/fig03_duffing_single_basins.toml
+fig06: configs/figures/fig06_duffing_basins.toml
+fig09: configs/figures/fig09_bilinear_single_basins.toml
+fig12: configs/figures/fig12_bilinear_basins.toml
+fig13: configs/figures/fig13_bilinear_basins.toml
+fig14ab: configs/figures/fig14ab_bilinear_impacting.toml
+fig14cd: configs/figures/fig14cd_duffing_impacting.toml
+fig14: fig14ab fig14cd
+
+$(BASIN_FIGS): $(STAMP)
+	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
+	$(SI) plot basins results/$@.h5 -o results/$@.png
+
+
+.PHONY: figures fig14 $(BASIN_FIGS)
+
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 

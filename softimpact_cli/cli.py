@@ -82,14 +82,19 @@ def _scheduler(ctx, param, value):
 @click.option("--chunk-size", type=click.IntRange(min=1), default=None,
               help="Trajectories per chunk (default: about 16 chunks per worker).")
 @click.option("-q", "--quiet", is_flag=True, help="No plan, no progress bar.")
+@click.option("--quick", is_flag=True,
+              help="Low resolution (planes <= 24 x 24, <= 100 samples) for previews and CI.")
 @_user_errors
-def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet):
+def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick):
     """Run SCENE (a TOML file) and write its result to HDF5."""
     from .config import SWEEP_KINDS
+    from .config import quick as quick_scene
     from .run import run_scene
     from .store import write_result
 
     sc = load_scene(scene)
+    if quick:
+        sc = quick_scene(sc)
     out = Path(output) if output else sc.output
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)

@@ -82,20 +82,33 @@ def format_catalogue(ds) -> str:
 GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
 
 
+def grid_dims(ds) -> tuple[str, ...]:
+    """The dims a sweep's grid points span: GRID_AXES, or ("panel",)."""
+    return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+
+
+def grid_point(ds, index: tuple[int, ...]) -> dict[str, float]:
+    """Parameter values of the grid point at ``index`` (over grid_dims)."""
+    dims = grid_dims(ds)
+    sel = dict(zip(dims, index, strict=True))
+    return {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
+            for a in GRID_AXES}
+
+
 def sweep_summary(ds) -> dict:
     """Label table, per-grid-point counts and fractions, and status totals of a sweep."""
     codes = [int(c) for c in ds["label_code"].values]
     names = [str(n) for n in ds["label_name"].values]
     table = dict(zip(codes, names, strict=True))
     ic_dims = str(ds.attrs.get("ic_dims", "")).split()
-    label = ds["label"].transpose(*GRID_AXES, *ic_dims).values
-    grid_shape = label.shape[:5]
+    label = ds["label"].transpose(*grid_dims(ds), *ic_dims).values
+    grid_shape = label.shape[: len(grid_dims(ds))]
     flat = label.reshape(int(np.prod(grid_shape)), -1)
     points = []
     for k, index in enumerate(np.ndindex(*grid_shape)):
         values, counts = np.unique(flat[k], return_counts=True)
         n = flat.shape[1]
-        point = {a: float(ds[a].values[i]) for a, i in zip(GRID_AXES, index, strict=True)}
+        point = grid_point(ds, index)
         point["counts"] = {table[int(v)]: int(c) for v, c in zip(values, counts, strict=True)}
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)

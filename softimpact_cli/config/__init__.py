@@ -20,10 +20,11 @@ from .scene import (
     TrajectoryAnalysis,
     load_scene,
     parse_scene,
+    quick,
 )
 from .sweep import GRID_AXES, GRID_UNITS, CatalogueSettings, Grid, InitialConditions
 
 __all__ = ["ANALYSIS_KINDS", "GRID_AXES", "GRID_UNITS", "SWEEP_KINDS", "CatalogueAnalysis",
            "CatalogueSettings", "ConfigError", "Grid", "InitialConditions",
            "IntegratorSettings", "Scene", "SweepAnalysis", "TrajectoryAnalysis",
-           "check_writable", "load_scene", "parse_scene"]
+           "check_writable", "load_scene", "parse_scene", "quick"]

@@ -22,13 +22,26 @@ MAX_GRID_VALUES = 1_000_000
 
 @dataclass(frozen=True)
 class Grid:
-    """Values of every grid axis (length 1 when not swept), in GRID_AXES order."""
+    """The parameter points of a sweep.
+
+    Cartesian (default): ``axes`` holds the values of every axis (length 1 when not swept)
+    and the points are their product, dims GRID_AXES. Panels (``[grid] panels = [{d = ..,
+    phi = ..}, ...]``): an explicit list of points along one dim ``panel``, each axis a
+    coordinate of it (``axes`` then holds the per-panel values).
+    """
 
     axes: Mapping[str, tuple[float, ...]]
     swept: tuple[str, ...]
+    panels: bool = False
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        return ("panel",) if self.panels else GRID_AXES
 
     @property
     def shape(self) -> tuple[int, ...]:
+        if self.panels:
+            return (len(self.axes["d"]),)
         return tuple(len(self.axes[a]) for a in GRID_AXES)
 
     @property
@@ -36,9 +49,15 @@ class Grid:
         return int(np.prod(self.shape))
 
     def point(self, flat: int) -> dict[str, float]:
-        """Axis values of grid point number ``flat`` (C order over GRID_AXES)."""
+        """Axis values of grid point number ``flat`` (C order over the dims)."""
+        if self.panels:
+            return {a: self.axes[a][flat] for a in GRID_AXES}
         index = np.unravel_index(flat, self.shape)
         return {a: self.axes[a][i] for a, i in zip(GRID_AXES, index, strict=True)}
+
+    def distinct(self, axis: str) -> tuple[float, ...]:
+        """The distinct values ``axis`` takes over the grid, in first-seen order."""
+        return tuple(dict.fromkeys(self.axes[axis]))
 
 
 @dataclass(frozen=True)
@@ -177,6 +196,8 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
     """[grid] for a sweep; ``check_value(axis, value)`` returns a problem or None."""
     sec = Section(source, "grid", doc.get("grid", {}))
     allowed = GRID_AXES if bodies == 2 else ("t0",)
+    if sec.has("panels"):
+        return _read_panels(sec, values, allowed, period, check_value)
     axes: dict[str, tuple[float, ...]] = {}
     for axis in GRID_AXES:
         if sec.has(axis) and axis in allowed:
@@ -196,6 +217,50 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
         if axis not in axes:
             axes[axis] = (float(values.get(axis, 0.0)),) if axis != "t0" else (0.0,)
     return Grid(axes, swept)
+
+
+def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period: float,
+                 check_value) -> Grid:
+    """[grid] panels = [{d = .., phi = ..}, ...]: an explicit list of parameter points."""
+    from ..expressions import parse_multiple
+
+    panels = sec.raw("panels")
+    sec.finish(("panels",))  # panels exclude the other grid keys
+    if not isinstance(panels, list) or not panels or not all(isinstance(p, dict)
+                                                            for p in panels):
+        raise sec.fail("panels", "must be a non-empty list of tables like {d = 10.0, "
+                                 "phi = \"pi\"}")
+    axes: dict[str, list[float]] = {a: [] for a in GRID_AXES}
+    swept = []
+    for i, panel in enumerate(panels):
+        for key in panel:
+            if key not in allowed:
+                raise sec.fail(f"panels[{i}].{key}", f"unknown key; allowed: "
+                                                     f"{', '.join(allowed)}")
+        for axis in GRID_AXES:
+            where = f"panels[{i}].{axis}"
+            if axis in panel:
+                raw = panel[axis]
+                try:
+                    if axis == "phi":
+                        v = parse_multiple(raw, "pi", math.pi)
+                    elif axis == "t0":
+                        v = parse_multiple(raw, "T", period)
+                    elif isinstance(raw, bool) or not isinstance(raw, int | float):
+                        raise ValueError(f"must be a number, got {raw!r}")
+                    else:
+                        v = float(raw)
+                except ValueError as exc:
+                    raise sec.fail(where, str(exc)) from None
+                problem = check_value(axis, v)
+                if problem:
+                    raise sec.fail(where, f"{problem}, got {v!r}")
+                if axis not in swept:
+                    swept.append(axis)
+            else:
+                v = float(values.get(axis, 0.0)) if axis != "t0" else 0.0
+            axes[axis].append(v)
+    return Grid({a: tuple(v) for a, v in axes.items()}, tuple(swept), panels=True)
 
 
 def read_box(sec: Section, key: str, names: tuple[str, ...], default=None, required=True):

@@ -8,10 +8,10 @@ from pathlib import Path
 import numpy as np
 
 from ..expressions import format_multiple
+from ..info import GRID_AXES, grid_dims, grid_point
 from . import pyplot
 from .palette import colour_of
 
-GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
 SYMBOLS = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "t0": "t_0"}
 AXIS_SYMBOLS = {"x1": "x_1", "x2": "x_2", "v1": r"\dot x_1", "v2": r"\dot x_2", "x": "x",
                 "v": r"\dot x"}
@@ -21,22 +21,21 @@ def panel_title(ds, index: tuple[int, ...], always=("d", "phi")) -> str:
     """Parameters of one grid point: the swept ones and d, phi (t0 as a fraction of T)."""
     swept = str(ds.attrs.get("grid_swept", "")).split()
     T = float(ds.attrs["forcing_period"])
+    point = grid_point(ds, index)
     parts = []
-    for a, i in zip(GRID_AXES, index, strict=True):
+    for a in GRID_AXES:
         if a not in swept and a not in always:
             continue
-        if a == "d" and int(ds.attrs.get("bodies", 2)) == 1:
+        if a in ("d", "phi") and int(ds.attrs.get("bodies", 2)) == 1:
             continue
-        if a == "phi" and int(ds.attrs.get("bodies", 2)) == 1:
-            continue
-        v = float(ds[a].values[i])
+        v = point[a]
         text = (format_multiple(v, "\\pi", np.pi) if a == "phi" else
                 format_multiple(v, "T", T) if a == "t0" else f"{v:.6g}")
         parts.append(f"${SYMBOLS[a]} = {text}$")
     if "t0" not in swept:
         mode = ds.attrs.get("t0_mode", "fixed")
         parts.append("random $t_0$" if mode == "random" else
-                     f"$t_0 = {format_multiple(float(ds['t0'].values[0]), 'T', T)}$")
+                     f"$t_0 = {format_multiple(point['t0'], 'T', T)}$")
     return ", ".join(parts)
 
 
@@ -54,8 +53,8 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
     codes = [int(c) for c in ds["label_code"].values]
     names = [str(n) for n in ds["label_name"].values]
     latex = [str(n) for n in ds["label_latex"].values]
-    label = ds["label"].transpose(*GRID_AXES, a0, a1).values
-    grid_shape = label.shape[:5]
+    label = ds["label"].transpose(*grid_dims(ds), a0, a1).values
+    grid_shape = label.shape[: len(grid_dims(ds))]
     n_panels = int(np.prod(grid_shape))
     if n_panels > max_panels:
         raise ValueError(f"{n_panels} grid points; at most {max_panels} panels (raise "
@@ -105,7 +104,10 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
         f"{v} = 0" for v in variables if v not in (a0, a1))
     import textwrap
 
-    params = "\n".join(textwrap.wrap(str(ds.attrs.get("parameters", "")), 60 * ncols))
+    swept = set(str(ds.attrs.get("grid_swept", "")).split())
+    fixed_params = [p for p in str(ds.attrs.get("parameters", "")).split(", ")
+                    if p.split("=")[0] not in swept]
+    params = "\n".join(textwrap.wrap(", ".join(fixed_params), 60 * ncols))
     fig.suptitle(f"{ds.attrs.get('model')} basins; {fixed}\n{params}", fontsize=9)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -53,6 +53,8 @@ class Plan:
     def describe(self) -> str:
         g = self.scene.grid
         swept = ", ".join(f"{a} x{len(g.axes[a])}" for a in g.swept) or "one point"
+        if g.panels:
+            swept = f"panels over {', '.join(g.swept)}"
         return (f"plan: {self.n_points} grid points ({swept}) x {self.n_ic} initial "
                 f"conditions = {self.n_total} trajectories in {self.n_chunks} chunks of "
                 f"<= {self.chunk_size}; result about {_size(self.result_bytes)}")

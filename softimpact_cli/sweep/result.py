@@ -28,10 +28,14 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     """
     grid = scene.grid
     ic = scene.initial_conditions
-    dims = GRID_AXES + ic.dims
+    dims = grid.dims + ic.dims
     shape = grid.shape + ic.shape
-    coords: dict = {a: (a, np.array(grid.axes[a]), {"units": GRID_UNITS[a]}) for a in GRID_AXES}
+    along = ("panel",) if grid.panels else None
+    coords: dict = {a: (along or a, np.array(grid.axes[a]), {"units": GRID_UNITS[a]})
+                    for a in GRID_AXES}
     coords["t0"][2]["long_name"] = "time at which the initial state is imposed"
+    if grid.panels:
+        coords["panel"] = ("panel", np.arange(grid.size))
     for a, values in ic.coords().items():
         coords[a] = (a, values, {"long_name": f"initial {a}", "units": "1"})
     data = {}
@@ -58,7 +62,7 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     coords["orbit_point"] = ("orbit_point", np.arange(max_q))
     coords["variable"] = ("variable", list(scene.system.state_names))
     data["attractor_points"] = (
-        ("label_index",) + GRID_AXES + ("orbit_point", "variable"),
+        ("label_index",) + grid.dims + ("orbit_point", "variable"),
         orbit_arr.reshape((len(codes),) + grid.shape + (max_q, dim)),
         {"long_name": "section points of an orbit reached, per label and grid point",
          "units": "1"})
@@ -74,6 +78,7 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
         "ic_kind": ic.kind,
         "ic_dims": " ".join(ic.dims),
         "grid_swept": " ".join(grid.swept),
+        "grid_dims": " ".join(grid.dims),
         "t0_mode": "random" if t0_per_sample is not None else
                    ("grid" if "t0" in grid.swept else "fixed"),
         "forcing_period": 2 * np.pi / float(scene.values["w"]),

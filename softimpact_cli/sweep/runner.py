@@ -38,7 +38,7 @@ def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ..
     states = sample_states(s.box, s.grid, s.random, s.seed)
     left, counts = body_catalogue(problem, states, 0.0, s.match_tol, progress)
     catalogues = {}
-    phis = scene.grid.axes["phi"] if system.bodies == 2 else (0.0,)
+    phis = scene.grid.distinct("phi") if system.bodies == 2 else (0.0,)
     for phi in phis:
         right, combos = [], []
         if system.bodies == 2:

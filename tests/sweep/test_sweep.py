@@ -206,7 +206,8 @@ def test_bad_grids(tmp_path, name):
 
 
 @pytest.mark.parametrize("ic, key", [
-    ("kind = 'plane'\naxes = ['x1', 'y']\nranges = [[-1, 1], [-1, 1]]\n", "[initial_conditions] axes"),
+    ("kind = 'plane'\naxes = ['x1', 'y']\nranges = [[-1, 1], [-1, 1]]\n",
+     "[initial_conditions] axes"),
     ("kind = 'random'\nn = 0\nbox = {x1=[-1,1], v1=[-1,1], x2=[-1,1], v2=[-1,1]}\n",
      "[initial_conditions] n"),
     ("kind = 'random'\nn = 5\nbox = {x1=[-1,1], v1=[-1,1], x2=[-1,1]}\n",
