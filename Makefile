@@ -65,12 +65,21 @@ fig14ab: configs/figures/fig14ab_bilinear_impacting.toml
 fig14cd: configs/figures/fig14cd_duffing_impacting.toml
 fig14: fig14ab fig14cd
 
+DCRIT_FIGS := fig05 fig11
+FIGURES += $(DCRIT_FIGS)
+fig05: configs/figures/fig05_duffing_dcrit.toml
+fig11: configs/figures/fig11_bilinear_dcrit.toml
+
+$(DCRIT_FIGS): $(STAMP)
+	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite
+	$(SI) plot dcrit results/$@.h5 -o results/$@.png
+
 $(BASIN_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot basins results/$@.h5 -o results/$@.png
 
 
-.PHONY: figures fig14 $(BASIN_FIGS)
+.PHONY: figures fig14 $(BASIN_FIGS) $(DCRIT_FIGS)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

@@ -168,6 +168,27 @@ def plot_basins_cmd(result, output, max_panels):
         raise ConfigError(f"{result}: {exc}") from None
 
 
+@plot.command("dcrit")
+@click.argument("result", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Figure file (.png, .pdf, .svg).")
+@click.option("--combination", default=None,
+              help="Draw only this combination's x1 - x2 traces (default: all).")
+@_user_errors
+def plot_dcrit_cmd(result, output, combination):
+    """Critical-distance curves, surviving-combination regions and x1 - x2 traces."""
+    from .plot.dcrit import plot_dcrit
+
+    ds = _open(result)
+    if ds.attrs.get("analysis") != "dcrit":
+        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not dcrit")
+    names = [str(n) for n in ds["combination_label"].values]
+    if combination is not None and combination not in names:
+        raise ConfigError(f"--combination: {combination!r} is not one of {', '.join(names)}")
+    check_writable(Path(output), "command line", "-o/--output")
+    click.echo(f"figure -> {plot_dcrit(ds, output, combination)}")
+
+
 @plot.command("catalogue")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,

@@ -32,6 +32,11 @@ def describe(ds) -> dict:
         out["variables"] = [str(v) for v in ds["variable"].values]
     if ds.attrs.get("analysis") == "catalogue":
         out.update(catalogue_summary(ds))
+    if "d_crit" in ds:
+        out["d_crit"] = {
+            str(name): {"phi": ds["phi"].values.tolist(),
+                        "d_crit": ds["d_crit"].values[i].tolist()}
+            for i, name in enumerate(ds["combination_label"].values)}
     if "label" in ds and "label_code" in ds:
         out.update(sweep_summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")

@@ -38,8 +38,40 @@ def run_scene(scene: Scene, progress=None) -> xr.Dataset:
         cat = build_catalogue(scene.system, dict(scene.values), scene.integrator, states, a.t0,
                               a.match_tol, tick)
         ds = catalogue_dataset(cat, scene.system, scene.integrator)
+    elif a.kind == "dcrit":
+        ds = critical_distance_dataset(scene, progress)
     else:  # config only admits known kinds
         raise AssertionError(f"unhandled analysis kind {a.kind!r}")
     wall = time.perf_counter() - t0
     ds.attrs.update(provenance(scene, started, time.time(), wall))
+    return ds
+
+
+def critical_distance_dataset(scene: Scene, progress=None) -> xr.Dataset:
+    """d_crit(phi) of every combination, the traces of fig. 5 (b-d), and the catalogue."""
+    import numpy as np
+
+    from .analysis.catalogue import (
+        build_catalogue,
+        catalogue_dataset,
+        sample_states,
+    )
+    from .analysis.critical_distance import critical_distances, traces
+
+    a = scene.analysis
+    c = scene.catalogue
+    values = dict(scene.values)
+    cat = build_catalogue(scene.system, values, scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    tick = progress(len(a.phis)) if progress else None
+    ds = critical_distances(scene.system, values, list(cat.attractors), np.array(a.phis),
+                            a.samples, tick)
+    if a.traces:
+        ds = xr.merge([ds, traces(scene.system, values, cat, a.traces, a.samples)],
+                      combine_attrs="override")
+    ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)
+                   .drop_vars(["combination_orbit"]).drop_dims("joint_point")],
+                  combine_attrs="override", compat="override")
+    ds.attrs["analysis"] = "dcrit"
+    ds.attrs["forcing_period"] = 2 * np.pi / float(values["w"])
     return ds

@@ -16,6 +16,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from ..expressions import parse_multiple
 from ..systems import LAWS, MODELS, System, get_system
 from .reader import ConfigError, Section, did_you_mean, positive
 from .sweep import (
@@ -28,7 +31,7 @@ from .sweep import (
     read_initial_conditions,
 )
 
-ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability")
+ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit")
 SWEEP_KINDS = ("basins", "stability")
 METHODS = ("auto", "rk4", "dopri5")
 
@@ -81,6 +84,17 @@ class CatalogueAnalysis:
     seed: int = 0
     t0: float = 0.0
     match_tol: float = 1e-3
+
+
+@dataclass(frozen=True)
+class CriticalDistanceAnalysis:
+    """[analysis] kind = "dcrit": d_crit(phi) of every combination, at the phi values of
+    [grid] (default 256 points over [0, 2 pi)), plus x1 - x2 traces at ``traces``."""
+
+    kind: str
+    phis: tuple[float, ...]
+    traces: tuple[float, ...] = ()
+    samples: int = 512
 
 
 @dataclass(frozen=True)
@@ -205,6 +219,20 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
         )
         if analysis.grid == 0 and analysis.random == 0:
             raise sec.fail("grid", "grid and random are both 0: no initial conditions")
+    elif kind == "dcrit":
+        if system.bodies != 2:
+            raise sec.fail("kind", "critical distances need a pair ([system] bodies = 2)")
+        raw = sec.raw("traces", [])
+        if not isinstance(raw, list):
+            raise sec.fail("traces", f"must be a list of phases, got {raw!r}")
+        traces = []
+        for v in raw:
+            try:
+                traces.append(parse_multiple(v, "pi", math.pi))
+            except ValueError as exc:
+                raise sec.fail("traces", str(exc)) from None
+        analysis = CriticalDistanceAnalysis(kind=kind, phis=(), traces=tuple(traces),
+                                            samples=sec.integer("samples", 512, 16, 1_000_000))
     elif kind in SWEEP_KINDS:
         analysis = SweepAnalysis(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
     sec.finish()
@@ -244,7 +272,22 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     analysis = _read_analysis(source, doc, system, period)
     output = _read_output(source, doc, Path("."))
     grid = initial = catalogue = None
-    if analysis.kind in SWEEP_KINDS:
+    if analysis.kind == "dcrit":
+        grid_doc = doc.get("grid", {})
+        if set(grid_doc) - {"phi"}:
+            raise ConfigError(f"{source}: [grid] {sorted(set(grid_doc) - {'phi'})[0]}: "
+                              "critical distances sweep phi only")
+        if "phi" in grid_doc:
+            grid = read_grid(source, doc, values, system.bodies, period,
+                             lambda axis, v: _check_axis(system, axis, v))
+            phis = grid.axes["phi"]
+        else:
+            phis = tuple(np.linspace(0.0, 2 * np.pi, 256, endpoint=False).tolist())
+        from dataclasses import replace as _replace
+
+        analysis = _replace(analysis, phis=phis)
+        catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
+    elif analysis.kind in SWEEP_KINDS:
         grid = read_grid(source, doc, values, system.bodies, period,
                          lambda axis, v: _check_axis(system, axis, v))
         initial = read_initial_conditions(source, doc, system.state_names, period,
@@ -252,7 +295,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
     else:
         for name in ("grid", "initial_conditions", "catalogue"):
-            if name in doc:
+            if name in doc and not (analysis.kind == "dcrit" and name != "initial_conditions"):
                 raise ConfigError(f"{source}: [{name}]: only for the analyses "
                                   f"{', '.join(SWEEP_KINDS)}; kind is {analysis.kind!r}")
     return Scene(source=source, text=text, system=system, values=values,

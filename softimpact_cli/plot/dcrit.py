@@ -1,0 +1,128 @@
+"""Critical-distance figures: d_crit(phi) curves with regions labelled by how many
+combinations survive (Roman numerals, as in the study), and x1 - x2 traces (fig. 5)."""
+
+from __future__ import annotations
+
+from collections import deque
+from pathlib import Path
+
+import numpy as np
+
+from ..labels import latex_of
+from . import pyplot
+from .palette import colour_of
+
+
+def roman(n: int) -> str:
+    if n == 0:
+        return "0"
+    out = ""
+    for value, letters in ((1000, "M"), (900, "CM"), (500, "D"), (400, "CD"), (100, "C"),
+                           (90, "XC"), (50, "L"), (40, "XL"), (10, "X"), (9, "IX"), (5, "V"),
+                           (4, "IV"), (1, "I")):
+        while n >= value:
+            out += letters
+            n -= value
+    return out
+
+
+def regions(count: np.ndarray) -> list[tuple[int, float, float, int]]:
+    """Connected regions of equal count: (count, row centre, column centre, size)."""
+    seen = np.zeros(count.shape, dtype=bool)
+    out = []
+    rows, cols = count.shape
+    for r0 in range(rows):
+        for c0 in range(cols):
+            if seen[r0, c0]:
+                continue
+            value = count[r0, c0]
+            queue = deque([(r0, c0)])
+            seen[r0, c0] = True
+            members = []
+            while queue:
+                r, c = queue.popleft()
+                members.append((r, c))
+                for dr, dc in ((1, 0), (-1, 0), (0, 1), (0, -1)):
+                    rr, cc = r + dr, c + dc
+                    if 0 <= rr < rows and 0 <= cc < cols and not seen[rr, cc] and \
+                            count[rr, cc] == value:
+                        seen[rr, cc] = True
+                        queue.append((rr, cc))
+            m = np.array(members)
+            # a member near the centroid, so the numeral sits inside a non-convex region
+            centre = m.mean(axis=0)
+            best = m[np.argmin(((m - centre) ** 2).sum(axis=1))]
+            out.append((int(value), float(best[0]), float(best[1]), len(members)))
+    return out
+
+
+def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
+    plt = pyplot()
+    names = [str(n) for n in ds["combination_label"].values]
+    phi = ds["phi"].values
+    dc = ds["d_crit"].values
+    n_traces = ds.sizes.get("trace_phi", 0)
+    ncols = 1 + min(n_traces, 3)
+    nrows = 1 + (max(n_traces - 3, 0) + 2) // 3 if n_traces > 3 else 1
+    fig, axs = plt.subplots(nrows, ncols, figsize=(5.5 + 3.6 * (ncols - 1), 4.6 * nrows),
+                            squeeze=False, constrained_layout=True,
+                            gridspec_kw={"width_ratios": [1.6] + [1] * (ncols - 1)})
+    ax = axs[0, 0]
+    d_lo = max(0.0, 0.9 * float(np.nanmin(dc)))
+    d_hi = 1.1 * float(np.nanmax(dc))
+    d_axis = np.linspace(d_lo, d_hi, 240)
+    # surviving combinations: those whose critical distance lies below d
+    count = (dc[:, None, :] < d_axis[None, :, None]).sum(axis=0)  # (d, phi)
+    ax.imshow(count, origin="lower", aspect="auto", cmap="Greys", alpha=0.35,
+              extent=(phi[0], phi[-1], d_lo, d_hi), vmin=0, vmax=2 * len(names))
+    for value, r, c, size in regions(count):
+        if size < 0.004 * count.size:
+            continue
+        ax.text(phi[int(c)], d_axis[int(r)], roman(value), ha="center", va="center",
+                fontsize=10, fontweight="bold", color="k")
+    for i, name in enumerate(names):
+        ax.plot(phi, dc[i], color=colour_of(name), lw=1.6, label=latex_of(name))
+    ax.set_xlabel(r"$\varphi$")
+    ax.set_ylabel("$d$")
+    ax.set_xlim(phi[0], phi[-1])
+    ax.set_ylim(d_lo, d_hi)
+    ticks = np.arange(0, 2 * np.pi + 1e-9, np.pi / 2)
+    ax.set_xticks(ticks, ["0", r"$\pi/2$", r"$\pi$", r"$3\pi/2$", r"$2\pi$"][: len(ticks)])
+    ax.set_title("critical distances $d_{crit}(\\varphi)$; numerals: combinations that "
+                 "survive", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0) if len(names) > 8
+              else None, ncols=1 + len(names) // 12)
+    chosen = [combination] if combination else names
+    spp = int(ds.attrs.get("trace_samples_per_period", 512))
+    for k in range(n_traces):
+        r, c = (0, 1 + k) if k < 3 else (1 + (k - 3) // 3, (k - 3) % 3)
+        tax = axs[r, c]
+        tphi = float(ds["trace_phi"].values[k])
+        for name in chosen:
+            i = names.index(name)
+            g = ds["relative_trace"].values[k, i]
+            g = g[np.isfinite(g)]
+            t = np.arange(g.size) / spp
+            tax.plot(t, g, color=colour_of(name), lw=1.2, label=latex_of(name))
+            j = int(np.argmax(g))
+            tax.plot(t[j], g[j], "o", color=colour_of(name), mec="k")
+            tax.annotate(f"{g[j]:.4f}", (t[j], g[j]), textcoords="offset points",
+                         xytext=(4, 4), fontsize=7)
+        tax.set_xlabel("$t/T$")
+        tax.set_ylabel("$x_1 - x_2$")
+        tax.set_title(f"$\\varphi = {tphi / np.pi:.4g}\\pi$", fontsize=9)
+        if len(chosen) == 1:
+            tax.legend(fontsize=7, loc="lower right")
+    for r in range(nrows):
+        for c in range(ncols):
+            if not axs[r, c].has_data():
+                axs[r, c].axis("off")
+    body = [p for p in str(ds.attrs.get("parameters", "")).split(", ")
+            if p.split("=")[0] in ("c", "k1", "k2", "F", "w", "d1")]
+    fig.suptitle(f"{ds.attrs.get('model')} pair (uncoupled orbits): {', '.join(body)}",
+                 fontsize=9)
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=130)
+    plt.close(fig)
+    return out
