@@ -74,12 +74,25 @@ $(DCRIT_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite
 	$(SI) plot dcrit results/$@.h5 -o results/$@.png
 
+STABILITY_FIGS := fig15a fig15b fig14c-t0 fig14c-random-t0
+FIGURES += $(STABILITY_FIGS)
+fig15a: configs/figures/fig15a_bilinear_stability.toml
+fig15b: configs/figures/fig15b_duffing_stability.toml
+fig14c-t0: configs/figures/fig14c_t0_stability.toml
+fig14c-random-t0: configs/figures/fig14c_random_t0_stability.toml
+fig15: fig15a fig15b
+
+$(STABILITY_FIGS): $(STAMP)
+	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
+	$(SI) info results/$@.h5
+	$(if $(filter fig14c-random-t0,$@),,$(SI) plot stability results/$@.h5 -o results/$@.png)
+
 $(BASIN_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot basins results/$@.h5 -o results/$@.png
 
 
-.PHONY: figures fig14 $(BASIN_FIGS) $(DCRIT_FIGS)
+.PHONY: figures fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

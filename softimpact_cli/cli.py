@@ -189,6 +189,30 @@ def plot_dcrit_cmd(result, output, combination):
     click.echo(f"figure -> {plot_dcrit(ds, output, combination)}")
 
 
+@plot.command("stability")
+@click.argument("result", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Figure file (.png, .pdf, .svg).")
+@click.option("--against", type=click.Choice(["d", "phi", "k_c", "c_c", "t0"]), default=None,
+              help="Grid axis on the horizontal axis (default: the swept one).")
+@_user_errors
+def plot_stability_cmd(result, output, against):
+    """Basin-stability curves with 95% Wilson bands of a stability RESULT."""
+    from .analysis.stability import basin_stability
+    from .plot.stability import plot_stability
+
+    ds = _open(result)
+    if ds.attrs.get("analysis") != "stability" or int(ds.attrs.get("complete", 0)) != 1:
+        raise ConfigError(f"{result}: not a complete stability result")
+    swept = str(ds.attrs.get("grid_swept", "")).split()
+    against = against or (swept[0] if swept else "c_c")
+    check_writable(Path(output), "command line", "-o/--output")
+    try:
+        click.echo(f"figure -> {plot_stability(ds, basin_stability(ds), output, against)}")
+    except ValueError as exc:
+        raise ConfigError(f"{result}: {exc}") from None
+
+
 @plot.command("catalogue")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,

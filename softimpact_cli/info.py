@@ -123,7 +123,10 @@ def sweep_summary(ds) -> dict:
     totals = {"converged": 0, "unresolved": 0, "diverged": 0}
     for code, count in zip(*np.unique(status, return_counts=True), strict=True):
         totals[STATUS_TABLE[int(code)][0]] += int(count)
-    return {"complete": bool(int(ds.attrs.get("complete", 0))),
+    out = {}
+    if ds.attrs.get("analysis") == "stability":
+        out["stability"] = stability_summary(ds)
+    return {**out, "complete": bool(int(ds.attrs.get("complete", 0))),
             "n": int(ds.attrs.get("n", label.size)),
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),
             "labels": {str(c): n for c, n in table.items()},
@@ -139,3 +142,24 @@ def incomplete_summary(header, done: int) -> dict:
                          "fraction": done / total if total else 0.0},
             "scene_source": header.attrs.get("scene_source"),
             "scene": header.attrs.get("scene_text", "")}
+
+
+def stability_summary(ds) -> list[dict]:
+    """Per grid point: share and 95% Wilson interval of every group."""
+    from .analysis.stability import basin_stability
+
+    bs = basin_stability(ds)
+    dims = grid_dims(ds)
+    share = bs["share"].transpose(*dims, "group").values
+    lo = bs["ci_low"].transpose(*dims, "group").values
+    hi = bs["ci_high"].transpose(*dims, "group").values
+    groups = [str(g) for g in bs["group"].values]
+    out = []
+    for index in np.ndindex(*share.shape[:-1]):
+        point = grid_point(ds, index)
+        point["n"] = int(bs.attrs["n"])
+        point["shares"] = {g: {"share": float(share[index][j]),
+                               "ci95": [float(lo[index][j]), float(hi[index][j])]}
+                           for j, g in enumerate(groups)}
+        out.append(point)
+    return out

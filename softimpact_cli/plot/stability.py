@@ -1,0 +1,62 @@
+"""Basin-stability curves (figure 15): one line per non-impacting solution, one for all
+impacting solutions, one for the non-impacting sum, with 95% Wilson bands."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..info import grid_dims
+from ..labels import latex_of, parse_label
+from . import pyplot
+from .basins import SYMBOLS
+from .palette import IMPACTING, colour_of
+
+
+def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
+    """``bs`` is ``analysis.stability.basin_stability(ds)``; ``against`` a grid axis."""
+    plt = pyplot()
+    dims = grid_dims(ds)
+    x = ds[against].values
+    T = float(ds.attrs["forcing_period"])
+    xs = x / T if against == "t0" else x
+    other = [d for d in dims if d != against and bs.sizes.get(d, 1) > 1]
+    if other:
+        raise ValueError(f"the grid also sweeps {', '.join(other)}; stability curves are "
+                         f"drawn against one axis")
+    share = bs["share"].squeeze(drop=True)
+    lo = bs["ci_low"].squeeze(drop=True)
+    hi = bs["ci_high"].squeeze(drop=True)
+    fig, ax = plt.subplots(figsize=(9.0, 4.8), constrained_layout=True)
+    for g in [str(v) for v in bs["group"].values]:
+        if g in ("unresolved", "diverged") or g.startswith("impacting P"):
+            continue
+        if g == "impacting (all)":
+            colour, style, label = IMPACTING, "-", "impacting (all)"
+        elif g == "non-impacting (sum)":
+            colour, style, label = "k", "--", "non-impacting (sum)"
+        else:
+            if parse_label(g).kind == "impacting":
+                continue
+            colour, style, label = colour_of(g), "-", latex_of(g)
+        s = share.sel(group=g).values
+        if not np.any(hi.sel(group=g).values > 0):
+            continue
+        ax.plot(xs, s, style, color=colour, marker="o", ms=3, label=label)
+        ax.fill_between(xs, lo.sel(group=g).values, hi.sel(group=g).values, color=colour,
+                        alpha=0.18, lw=0)
+    ax.set_xlabel(f"${SYMBOLS.get(against, against)}$" + (" / T" if against == "t0" else ""))
+    ax.set_ylabel("basin stability")
+    ax.set_ylim(-0.02, 1.02)
+    mode = ds.attrs.get("t0_mode", "fixed")
+    t0_text = ("random $t_0$" if mode == "random" else "$t_0$ swept" if mode == "grid" else
+               f"$t_0 = {float(ds['t0'].values.ravel()[0]) / T:.4g}\\,T$")
+    ax.set_title(f"{ds.attrs.get('model')} pair, n = {bs.attrs['n']} samples per point, "
+                 f"95% Wilson bands; {t0_text}", fontsize=9)
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=130)
+    plt.close(fig)
+    return out
