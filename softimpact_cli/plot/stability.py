@@ -30,9 +30,11 @@ def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
     hi = bs["ci_high"].squeeze(drop=True)
     fig, ax = plt.subplots(figsize=(9.0, 4.8), constrained_layout=True)
     for g in [str(v) for v in bs["group"].values]:
-        if g in ("unresolved", "diverged") or g.startswith("impacting P"):
+        if g.startswith("impacting P"):
             continue
-        if g == "impacting (all)":
+        if g in ("unresolved", "diverged"):  # never hidden: they are results too
+            colour, style, label = ("0.5", ":", g) if g == "unresolved" else ("k", ":", g)
+        elif g == "impacting (all)":
             colour, style, label = IMPACTING, "-", "impacting (all)"
         elif g == "non-impacting (sum)":
             colour, style, label = "k", "--", "non-impacting (sum)"
