@@ -87,12 +87,23 @@ $(STABILITY_FIGS): $(STAMP)
 	$(SI) info results/$@.h5
 	$(if $(filter fig14c-random-t0,$@),,$(SI) plot stability results/$@.h5 -o results/$@.png)
 
+fig07: fig07-bifurcation fig07-basins
+fig07-bifurcation: $(STAMP)
+	$(SI) sweep configs/figures/fig07_duffing_bifurcation.toml -o results/fig07.h5 --overwrite
+	$(SI) plot bifurcation results/fig07.h5 -o results/fig07.png
+	$(SI) info results/fig07.h5
+fig07-basins: $(STAMP)
+	$(SI) sweep configs/figures/fig07_duffing_basins.toml -o results/fig07_basins.h5 \
+		--overwrite $(QUICKFLAG)
+	$(SI) plot basins results/fig07_basins.h5 -o results/fig07_basins.png
+FIGURES += fig07
+
 $(BASIN_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot basins results/$@.h5 -o results/$@.png
 
 
-.PHONY: figures fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
+.PHONY: figures fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

@@ -213,6 +213,23 @@ def plot_stability_cmd(result, output, against):
         raise ConfigError(f"{result}: {exc}") from None
 
 
+@plot.command("bifurcation")
+@click.argument("result", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Figure file (.png, .pdf, .svg).")
+@_user_errors
+def plot_bifurcation_cmd(result, output):
+    """Section displacements of both bodies against d, destruction points marked."""
+    from .plot.bifurcation import plot_bifurcation
+
+    ds = _open(result)
+    if ds.attrs.get("analysis") != "bifurcation":
+        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not a "
+                          "bifurcation")
+    check_writable(Path(output), "command line", "-o/--output")
+    click.echo(f"figure -> {plot_bifurcation(ds, output)}")
+
+
 @plot.command("catalogue")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,

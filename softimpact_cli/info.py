@@ -32,12 +32,19 @@ def describe(ds) -> dict:
         out["variables"] = [str(v) for v in ds["variable"].values]
     if ds.attrs.get("analysis") == "catalogue":
         out.update(catalogue_summary(ds))
+    if "destroyed_at" in ds:
+        out["branches"] = {
+            str(name): {"destroyed_at": _plain(float(ds["destroyed_at"].values[i])),
+                        "falls_to": str(ds["falls_to"].values[i]) or None,
+                        "impacting_range": [_plain(float(v))
+                                            for v in ds["impacting_range"].values[i]]}
+            for i, name in enumerate(ds["branch_name"].values)}
     if "d_crit" in ds:
         out["d_crit"] = {
             str(name): {"phi": ds["phi"].values.tolist(),
                         "d_crit": ds["d_crit"].values[i].tolist()}
             for i, name in enumerate(ds["combination_label"].values)}
-    if "label" in ds and "label_code" in ds:
+    if ds.attrs.get("analysis") in ("basins", "stability"):
         out.update(sweep_summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}

@@ -40,6 +40,8 @@ def run_scene(scene: Scene, progress=None) -> xr.Dataset:
         ds = catalogue_dataset(cat, scene.system, scene.integrator)
     elif a.kind == "dcrit":
         ds = critical_distance_dataset(scene, progress)
+    elif a.kind == "bifurcation":
+        ds = bifurcation_result(scene, progress)
     else:  # config only admits known kinds
         raise AssertionError(f"unhandled analysis kind {a.kind!r}")
     wall = time.perf_counter() - t0
@@ -74,4 +76,30 @@ def critical_distance_dataset(scene: Scene, progress=None) -> xr.Dataset:
                   combine_attrs="override", compat="override")
     ds.attrs["analysis"] = "dcrit"
     ds.attrs["forcing_period"] = 2 * np.pi / float(values["w"])
+    return ds
+
+
+def bifurcation_result(scene: Scene, progress=None) -> xr.Dataset:
+    """Follow the scene's branches along d (figure 7), with the catalogue attached."""
+    from .analysis.bifurcation import bifurcation_dataset, d_values
+    from .analysis.catalogue import build_catalogue, catalogue_dataset, sample_states
+    from .config import ConfigError
+
+    a = scene.analysis
+    c = scene.catalogue
+    values = dict(scene.values)
+    cat = build_catalogue(scene.system, values, scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    branches = list(a.branches) or list(cat.names)
+    for b in branches:
+        if b not in cat.names:
+            raise ConfigError(f"{scene.source}: [analysis] branches: {b!r} is not in the "
+                              f"catalogue ({', '.join(cat.names)})")
+    tick = progress(len(branches)) if progress else None
+    ds = bifurcation_dataset(scene.system, values, scene.integrator, cat, branches,
+                             d_values(a.start, a.stop, a.step), tick)
+    ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
+                  combine_attrs="override", compat="override")
+    ds.attrs["analysis"] = "bifurcation"
+    ds.attrs["forcing_period"] = 2 * 3.141592653589793 / float(values["w"])
     return ds

@@ -31,7 +31,7 @@ from .sweep import (
     read_initial_conditions,
 )
 
-ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit")
+ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation")
 SWEEP_KINDS = ("basins", "stability")
 METHODS = ("auto", "rk4", "dopri5")
 
@@ -95,6 +95,19 @@ class CriticalDistanceAnalysis:
     phis: tuple[float, ...]
     traces: tuple[float, ...] = ()
     samples: int = 512
+
+
+@dataclass(frozen=True)
+class BifurcationAnalysis:
+    """[analysis] kind = "bifurcation": follow solutions as d moves from ``start`` to
+    ``stop`` by ``step`` (each step from the previous end state); ``branches`` names the
+    solutions to follow (default: every combination of the catalogue)."""
+
+    kind: str
+    start: float
+    stop: float
+    step: float
+    branches: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -233,6 +246,29 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
                 raise sec.fail("traces", str(exc)) from None
         analysis = CriticalDistanceAnalysis(kind=kind, phis=(), traces=tuple(traces),
                                             samples=sec.integer("samples", 512, 16, 1_000_000))
+    elif kind == "bifurcation":
+        if system.bodies != 2:
+            raise sec.fail("kind", "bifurcation along d needs a pair ([system] bodies = 2)")
+        start = sec.number("start", None)
+        stop = sec.number("stop", None)
+        step = sec.number("step", None, positive)
+        if start == stop:
+            raise sec.fail("stop", "must differ from start")
+        if abs(stop - start) / step > 100_000:
+            raise sec.fail("step", f"{abs(stop - start) / step:.0f} steps; at most 100000")
+        raw = sec.raw("branches", [])
+        if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
+            raise sec.fail("branches", f"must be a list of names like 'L1^1 R1-0^2', got "
+                                       f"{raw!r}")
+        from ..labels import parse_label
+
+        for b in raw:
+            try:
+                if parse_label(b).kind != "pair":
+                    raise ValueError(f"{b!r} is not a non-impacting pair solution")
+            except ValueError as exc:
+                raise sec.fail("branches", str(exc)) from None
+        analysis = BifurcationAnalysis(kind, start, stop, step, tuple(raw))
     elif kind in SWEEP_KINDS:
         analysis = SweepAnalysis(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
     sec.finish()
@@ -272,7 +308,12 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     analysis = _read_analysis(source, doc, system, period)
     output = _read_output(source, doc, Path("."))
     grid = initial = catalogue = None
-    if analysis.kind == "dcrit":
+    if analysis.kind == "bifurcation":
+        catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
+        for name in ("grid", "initial_conditions"):
+            if name in doc:
+                raise ConfigError(f"{source}: [{name}]: not used by kind 'bifurcation'")
+    elif analysis.kind == "dcrit":
         grid_doc = doc.get("grid", {})
         if set(grid_doc) - {"phi"}:
             raise ConfigError(f"{source}: [grid] {sorted(set(grid_doc) - {'phi'})[0]}: "
@@ -295,7 +336,9 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
     else:
         for name in ("grid", "initial_conditions", "catalogue"):
-            if name in doc and not (analysis.kind == "dcrit" and name != "initial_conditions"):
+            if name in doc and not (analysis.kind in ("dcrit", "bifurcation")
+                                    and name == "catalogue") and not (
+                    analysis.kind == "dcrit" and name == "grid"):
                 raise ConfigError(f"{source}: [{name}]: only for the analyses "
                                   f"{', '.join(SWEEP_KINDS)}; kind is {analysis.kind!r}")
     return Scene(source=source, text=text, system=system, values=values,

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..expressions import format_multiple
 from ..info import GRID_AXES, grid_dims, grid_point
-from . import pyplot
+from . import parameter_text, pyplot
 from .palette import colour_of
 
 SYMBOLS = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "t0": "t_0"}
@@ -105,9 +105,7 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
     import textwrap
 
     swept = set(str(ds.attrs.get("grid_swept", "")).split())
-    fixed_params = [p for p in str(ds.attrs.get("parameters", "")).split(", ")
-                    if p.split("=")[0] not in swept]
-    params = "\n".join(textwrap.wrap(", ".join(fixed_params), 60 * ncols))
+    params = "\n".join(textwrap.wrap(parameter_text(ds, exclude=swept), 60 * ncols))
     fig.suptitle(f"{ds.attrs.get('model')} basins; {fixed}\n{params}", fontsize=9)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
