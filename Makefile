@@ -98,12 +98,18 @@ fig07-basins: $(STAMP)
 	$(SI) plot basins results/fig07_basins.h5 -o results/fig07_basins.png
 FIGURES += fig07
 
+map-d-phi: $(STAMP)
+	$(SI) sweep configs/figures/map_duffing_d_phi.toml -o results/map_d_phi.h5 --overwrite \
+		$(QUICKFLAG)
+	$(SI) plot map results/map_d_phi.h5 -o results/map_d_phi.png
+FIGURES += map-d-phi
+
 $(BASIN_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot basins results/$@.h5 -o results/$@.png
 
 
-.PHONY: figures fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
+.PHONY: figures map-d-phi fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

@@ -230,6 +230,25 @@ def plot_bifurcation_cmd(result, output):
     click.echo(f"figure -> {plot_bifurcation(ds, output)}")
 
 
+@plot.command("map")
+@click.argument("result", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Figure file (.png, .pdf, .svg).")
+@_user_errors
+def plot_map_cmd(result, output):
+    """Predicted and found numbers of coexisting solutions over two parameters."""
+    from .plot.maps import plot_map
+
+    ds = _open(result)
+    if ds.attrs.get("analysis") != "map" or int(ds.attrs.get("complete", 0)) != 1:
+        raise ConfigError(f"{result}: not a complete map result")
+    check_writable(Path(output), "command line", "-o/--output")
+    try:
+        click.echo(f"figure -> {plot_map(ds, output)}")
+    except ValueError as exc:
+        raise ConfigError(f"{result}: {exc}") from None
+
+
 @plot.command("catalogue")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,

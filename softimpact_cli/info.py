@@ -44,7 +44,7 @@ def describe(ds) -> dict:
             str(name): {"phi": ds["phi"].values.tolist(),
                         "d_crit": ds["d_crit"].values[i].tolist()}
             for i, name in enumerate(ds["combination_label"].values)}
-    if ds.attrs.get("analysis") in ("basins", "stability"):
+    if ds.attrs.get("analysis") in ("basins", "stability", "map"):
         out.update(sweep_summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}
@@ -133,6 +133,12 @@ def sweep_summary(ds) -> dict:
     out = {}
     if ds.attrs.get("analysis") == "stability":
         out["stability"] = stability_summary(ds)
+    if "predicted_count" in ds:
+        for k, index in enumerate(np.ndindex(*grid_shape)):
+            sel = dict(zip(grid_dims(ds), index, strict=True))
+            points[k]["predicted"] = int(ds["predicted_count"].isel(sel).values)
+            points[k]["found"] = int(ds["found_count"].isel(sel).values)
+            points[k]["found_nonimpacting"] = int(ds["found_nonimpacting"].isel(sel).values)
     return {**out, "complete": bool(int(ds.attrs.get("complete", 0))),
             "n": int(ds.attrs.get("n", label.size)),
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),

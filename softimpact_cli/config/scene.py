@@ -31,8 +31,9 @@ from .sweep import (
     read_initial_conditions,
 )
 
-ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation")
-SWEEP_KINDS = ("basins", "stability")
+ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation",
+                  "map")
+SWEEP_KINDS = ("basins", "stability", "map")
 METHODS = ("auto", "rk4", "dopri5")
 
 

@@ -135,6 +135,11 @@ def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: st
             if key not in orbits or flat < orbits[key][0]:
                 orbits[key] = (flat, pts)
     ds = sweep_dataset(scene, arrays, orbits, names, t0_per_sample)
+    if scene.analysis.kind == "map":
+        from ..analysis.maps import add_map_counts
+
+        first = next(iter(catalogues.values()))
+        ds = add_map_counts(ds, scene.system, dict(scene.values), list(first.attractors))
     catalogue_vars = catalogue_dataset(next(iter(catalogues.values())), scene.system,
                                        scene.integrator)
     ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")

@@ -1,0 +1,51 @@
+"""Two-parameter maps: how many solutions coexist, predicted and found.
+
+Predicted (from the critical distances): the number of non-impacting combinations whose
+d_crit(phi) lies below d. Found (from sampling initial conditions at each point): the
+number of distinct attractors reached, impacting ones included, and of non-impacting
+ones alone. Where prediction and finding differ, that is a result: a combination whose
+basin the samples missed, or impacting attractors the prediction cannot see.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..labels import parse_label
+from .critical_distance import critical_distances
+
+
+def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list) -> xr.Dataset:
+    """Add predicted_count, found_count, found_nonimpacting to a sweep result."""
+    from ..info import grid_dims
+
+    dims = grid_dims(ds)
+    names = [str(n) for n in ds["label_name"].values]
+    codes = [int(c) for c in ds["label_code"].values]
+    kinds = [parse_label(n).kind for n in names]
+    ic_dims = str(ds.attrs["ic_dims"]).split()
+    label = ds["label"]
+    present = xr.concat([(label == c).any(ic_dims) for c in codes], dim="label_index")
+    periodic = xr.DataArray([k not in ("unresolved", "diverged") for k in kinds],
+                            dims="label_index")
+    free = xr.DataArray([k in ("pair", "body", "unmatched") for k in kinds], dims="label_index")
+    found = (present & periodic).sum("label_index")
+    found_free = (present & free).sum("label_index")
+    phis = np.unique(np.asarray(ds["phi"].values, dtype=float))
+    dc = critical_distances(system, values, left_attractors, phis)
+    table = {float(p): dc["d_crit"].values[:, i] for i, p in enumerate(dc["phi"].values)}
+    d_b, phi_b = xr.broadcast(ds["d"], ds["phi"])
+    predicted = np.vectorize(lambda d, p: int(np.sum(table[float(p)] < d)))(d_b.values,
+                                                                           phi_b.values)
+    predicted = xr.DataArray(predicted, dims=d_b.dims).broadcast_like(found)
+    out = ds.assign(
+        predicted_count=predicted.transpose(*dims).assign_attrs(
+            long_name="non-impacting combinations predicted to survive (d_crit < d)"),
+        found_count=found.transpose(*dims).assign_attrs(
+            long_name="distinct periodic attractors found (impacting included)"),
+        found_nonimpacting=found_free.transpose(*dims).assign_attrs(
+            long_name="distinct non-impacting attractors found"),
+        d_crit=dc["d_crit"].rename(phi="dcrit_phi", combination="dcrit_combination"),
+    )
+    return out.assign_coords(dcrit_phi=("dcrit_phi", dc["phi"].values))
