@@ -269,13 +269,37 @@ def plot_catalogue_cmd(result, output):
 @main.command()
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@click.option("--compare", type=click.Path(dir_okay=False), default=None,
+              help="A stability result: compare RESULT's plane basin shares with its 4-D "
+                   "basin stability at common parameter points.")
 @_user_errors
-def info(result, as_json):
+def info(result, as_json, compare):
     """What RESULT holds: scene, status, period, contacts, wall time."""
-    from .info import describe, incomplete_summary
+    from .info import compare_shares, describe, incomplete_summary
     from .store.sweep_store import SweepStore
 
     ds = _open(result)
+    if compare:
+        other = _open(compare)
+        if ds.attrs.get("analysis") != "basins" or other.attrs.get("analysis") != "stability":
+            raise ConfigError(f"--compare: RESULT must be a basins result and {compare} a "
+                              "stability result")
+        rows = compare_shares(ds, other)
+        if not rows:
+            raise ConfigError(f"--compare: {result} and {compare} share no parameter point")
+        if as_json:
+            click.echo(json.dumps({"comparison": rows}, indent=2))
+            return
+        for row in rows:
+            click.echo(f"d={row['d']:.6g}, phi={row['phi']:.6g}, k_c={row['k_c']:.6g}, "
+                       f"c_c={row['c_c']:.6g} (t0 plane {row['t0_plane']:.4g}, "
+                       f"stability {row['t0_stability']:.4g})")
+            click.echo(f"  {'solution':16s} {'plane':>7s} {'4-D':>7s}  95% interval")
+            for name, v in row["shares"].items():
+                ci = v["ci95"] or [float("nan")] * 2
+                click.echo(f"  {name:16s} {v['plane']:7.3f} {v['stability']:7.3f}  "
+                           f"[{ci[0]:.3f}, {ci[1]:.3f}]")
+        return
     if int(ds.attrs.get("complete", 1)) == 0:
         summary = incomplete_summary(ds, len(SweepStore(result).done()))
     else:

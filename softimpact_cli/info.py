@@ -176,3 +176,27 @@ def stability_summary(ds) -> list[dict]:
                            for j, g in enumerate(groups)}
         out.append(point)
     return out
+
+
+def compare_shares(plane, stability) -> list[dict]:
+    """Plane basin shares beside 4-D basin-stability shares at common parameter points.
+
+    Points match on (d, phi, k_c, c_c) to 1e-9; t0 of both is reported.
+    """
+    a = {tuple(round(p[k], 9) for k in GRID_AXES[:4]): p for p in sweep_summary(plane)["points"]}
+    rows = []
+    for point in stability_summary(stability):
+        key = tuple(round(point[k], 9) for k in GRID_AXES[:4])
+        if key not in a:
+            continue
+        names = sorted(set(a[key]["fractions"]) | {g for g in point["shares"]
+                                                    if "(" not in g})
+        rows.append({
+            **{k: point[k] for k in GRID_AXES[:4]},
+            "t0_plane": a[key]["t0"], "t0_stability": point["t0"],
+            "shares": {n: {"plane": a[key]["fractions"].get(n, 0.0),
+                           "stability": point["shares"].get(n, {}).get("share", 0.0),
+                           "ci95": point["shares"].get(n, {}).get("ci95")}
+                       for n in names},
+        })
+    return rows

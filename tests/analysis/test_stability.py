@@ -78,3 +78,20 @@ def test_same_seed_same_shares(result, tmp_path):
                       chunk_size=17)
     assert np.array_equal(basin_stability(result)["count"].values,
                           basin_stability(again)["count"].values)
+
+
+def test_plane_shares_compared_with_4d_stability(result, tmp_path):
+    from softimpact_cli.info import compare_shares
+
+    plane = SCENE.replace('kind = "stability"', 'kind = "basins"').replace(
+        'kind = "random"\nbox = {x1 = [-12, 12], v1 = [-12, 12], x2 = [-12, 12], v2 = [-12, 12]}'
+        '\nn = 60\nseed = 9',
+        'kind = "plane"\naxes = ["x1", "x2"]\nranges = [[-12, 12], [-12, 12]]\nresolution = 6')
+    basins = run_sweep(parse_scene(plane, "plane.toml"), tmp_path / "p.h5", workers=1)
+    rows = compare_shares(basins, result)
+    assert [r["c_c"] for r in rows] == [2.0, 10.0]
+    for row in rows:
+        assert sum(v["plane"] for v in row["shares"].values()) == pytest.approx(1.0)
+        assert sum(v["stability"] for v in row["shares"].values()) == pytest.approx(1.0)
+        for v in row["shares"].values():
+            assert v["ci95"][0] <= v["stability"] <= v["ci95"][1]
