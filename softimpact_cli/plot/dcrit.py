@@ -56,6 +56,19 @@ def regions(count: np.ndarray) -> list[tuple[int, float, float, int]]:
     return out
 
 
+def jumps(values: np.ndarray, factor: float = 8.0) -> np.ndarray:
+    """Indices i where a named curve jumps between samples i and i + 1.
+
+    A name's shift s is defined by the canonical order of each body's section points
+    (point 0 = largest x). As phi moves the right body's points, the point with the
+    largest x can change, and the same physical state then carries another s: its named
+    curve jumps. Such jumps are drawn as gaps, not as vertical lines.
+    """
+    step = np.abs(np.diff(values))
+    typical = np.median(step) if step.size else 0.0
+    return np.where(step > factor * max(typical, 1e-12) + 0.05 * np.ptp(values))[0]
+
+
 def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
     plt = pyplot()
     names = [str(n) for n in ds["combination_label"].values]
@@ -81,7 +94,9 @@ def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
         ax.text(phi[int(c)], d_axis[int(r)], roman(value), ha="center", va="center",
                 fontsize=10, fontweight="bold", color="k")
     for i, name in enumerate(names):
-        ax.plot(phi, dc[i], color=colour_of(name), lw=1.6, label=latex_of(name))
+        cut = jumps(dc[i]) + 1
+        ax.plot(np.insert(phi, cut, np.nan), np.insert(dc[i], cut, np.nan),
+                color=colour_of(name), lw=1.6, label=latex_of(name))
     ax.set_xlabel(r"$\varphi$")
     ax.set_ylabel("$d$")
     ax.set_xlim(phi[0], phi[-1])
