@@ -6,7 +6,7 @@ SI := $(VENV)/bin/softimpact
 STAMP := $(VENV)/.installed-stamp
 PYTEST_ARGS ?=
 
-.PHONY: install test test-nojit demo trajectory lint clean catalogues fig04 fig10 fig13-catalogue
+.PHONY: install test test-nojit demo trajectory lint clean bench catalogues fig04 fig10 fig13-catalogue
 
 install: $(STAMP)
 
@@ -110,6 +110,12 @@ $(BASIN_FIGS): $(STAMP)
 
 
 .PHONY: figures map-d-phi fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
+
+# Speed, side by side in one run (figure 6(d) basin): softimpact vs the study's method vs
+# a scipy loop; plus basin-stability wall time and a profile. RES=200 for the full grid.
+RES ?= 100
+bench: $(STAMP)
+	$(PY) benchmarks/bench_basin.py --resolution $(RES)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
