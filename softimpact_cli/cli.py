@@ -84,8 +84,11 @@ def _scheduler(ctx, param, value):
 @click.option("-q", "--quiet", is_flag=True, help="No plan, no progress bar.")
 @click.option("--quick", is_flag=True,
               help="Low resolution (planes <= 24 x 24, <= 100 samples) for previews and CI.")
+@click.option("--resolution", type=click.IntRange(min=1), default=None,
+              help="Cap a plane's resolution per axis at N (previews, galleries).")
 @_user_errors
-def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick):
+def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
+          resolution):
     """Run SCENE (a TOML file) and write its result to HDF5."""
     from .config import SWEEP_KINDS
     from .config import quick as quick_scene
@@ -95,6 +98,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     sc = load_scene(scene)
     if quick:
         sc = quick_scene(sc)
+    if resolution:
+        sc = quick_scene(sc, plane=resolution, samples=10**12, flag=f"--resolution {resolution}")
     out = Path(output) if output else sc.output
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)

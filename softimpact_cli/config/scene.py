@@ -361,20 +361,20 @@ QUICK_PLANE = 24  # --quick: largest plane resolution per axis
 QUICK_SAMPLES = 100  # --quick: largest number of random samples
 
 
-def quick(scene: Scene) -> Scene:
-    """The scene at low resolution (for CI and previews): planes at most 24 x 24, at most
-    100 random samples. The stored scene text says so, so its hash differs."""
+def quick(scene: Scene, plane: int = QUICK_PLANE, samples: int = QUICK_SAMPLES,
+          flag: str = "--quick") -> Scene:
+    """The scene at lower resolution (CI, previews): planes at most ``plane`` per axis, at
+    most ``samples`` random samples. The stored scene text says so (its hash differs)."""
     from dataclasses import replace
 
     ic = scene.initial_conditions
     if ic is None:
         return scene
     if ic.kind == "plane":
-        ic = replace(ic, resolution=tuple(min(r, QUICK_PLANE) for r in ic.resolution))
+        ic = replace(ic, resolution=tuple(min(r, plane) for r in ic.resolution))
     elif ic.kind == "random":
-        ic = replace(ic, n=min(ic.n, QUICK_SAMPLES))
-    note = (f"\n# --quick: planes at most {QUICK_PLANE} x {QUICK_PLANE}, at most "
-            f"{QUICK_SAMPLES} random samples\n")
+        ic = replace(ic, n=min(ic.n, samples))
+    note = f"\n# {flag}: planes at most {plane} x {plane}, at most {samples} random samples\n"
     return replace(scene, initial_conditions=ic, text=scene.text + note)
 
 
