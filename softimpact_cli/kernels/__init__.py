@@ -8,11 +8,11 @@ kernels take the method as a first-class function:
             sample_t, sample_y) -> status
 """
 
-from . import common, dense, dopri5, orbit, rk4, switching
+from . import common, dense, dopri5, orbit, rk4, rosenbrock, switching
 from .numba_cache import stabilise
 
-for _module in (common, dense, dopri5, orbit, rk4, switching):
+for _module in (common, dense, dopri5, orbit, rk4, rosenbrock, switching):
     stabilise(_module)
 
 # method name -> module (each has ``advance``, ``ORDER`` and its tableau)
-METHODS = {"rk4": rk4, "dopri5": dopri5}
+METHODS = {"rk4": rk4, "dopri5": dopri5, "rodas4": rosenbrock}

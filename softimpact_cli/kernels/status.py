@@ -23,11 +23,13 @@ STATUS_TABLE = {
     DIVERGED: (
         "diverged",
         "state became non-finite or exceeded `divergence_bound` "
-        "(unstable step: use a finer `steps_per_period` or method 'dopri5')",
+        "(unstable step: use a finer `steps_per_period`, method 'dopri5', or 'stiff' for "
+        "hard stops)",
     ),
     STEP_BUDGET: (
         "unresolved",
-        "step budget of one forcing period exhausted (stiff contact? raise `max_steps_per_period`)",
+        "step budget of one forcing period exhausted (stiff contact? use method 'stiff' or "
+        "raise `max_steps_per_period`)",
     ),
     TOO_MANY_SWITCHES: (
         "unresolved",
