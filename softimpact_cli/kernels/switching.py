@@ -4,15 +4,20 @@ A surface is affine in the state, ``g_i(y) = A[i] @ y + b[i]``, so along a step'
 output ``g_i`` is a polynomial of degree <= 4 in the step fraction ``u``. Bit ``i`` of the
 mode is set on the engaged side ``g_i >= 0``. A step *exits* its mode when some watched
 surface changes side anywhere inside it, including a grazing excursion that comes back
-before the step ends (both end values on the same side): that is why each step is split
-into sub-intervals and every interior extremum of the polynomial is checked.
+before the step ends (both end values on the same side). The polynomial's critical
+points in (0, 1) are computed exactly (roots of its cubic derivative, each isolated in a
+piece where the cubic is monotone, between the roots of its quadratic second derivative);
+between consecutive critical points g is monotone, so checking g there finds every exit
+and every maximum, however close two extrema lie.
 """
 
+from math import sqrt
+
+import numpy as np
 from numba import njit
 
 from .layout import M0
 
-SUBINTERVALS = 4  # a step's polynomial has at most 3 extrema; 4 pieces isolate them
 ROOT_TOL = 1e-14  # in units of the step fraction u
 
 
@@ -57,17 +62,89 @@ def poly_rate(coef, u):
 
 
 @njit(cache=True)
-def _critical_point(coef, sign, lo, hi):
-    """Bisect on the derivative of sign*g: it goes from < 0 at lo to > 0 at hi."""
-    for _ in range(100):
-        if hi - lo < ROOT_TOL:
-            break
-        mid = 0.5 * (lo + hi)
-        if sign * poly_rate(coef, mid) < 0.0:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
+def _quadratic_roots(a, b, c, out):
+    """Real roots of a u^2 + b u + c in (0, 1), sorted, into out; returns their count."""
+    n = 0
+    if a == 0.0:
+        if b != 0.0:
+            r = -c / b
+            if 0.0 < r < 1.0:
+                out[0] = r
+                n = 1
+        return n
+    disc = b * b - 4.0 * a * c
+    if disc < 0.0:
+        return 0
+    sq = sqrt(disc)
+    q = -0.5 * (b + sq) if b >= 0.0 else -0.5 * (b - sq)  # no cancellation
+    r1 = q / a
+    r2 = c / q if q != 0.0 else r1
+    lo, hi = min(r1, r2), max(r1, r2)
+    if 0.0 < lo < 1.0:
+        out[n] = lo
+        n += 1
+    if 0.0 < hi < 1.0 and hi != lo:
+        out[n] = hi
+        n += 1
+    return n
+
+
+@njit(cache=True)
+def _cubic(q0, q1, q2, q3, u):
+    return q0 + u * (q1 + u * (q2 + u * q3))
+
+
+@njit(cache=True)
+def critical_points(coef, out):
+    """Roots of g'(u) in (0, 1), sorted, into out (size >= 3); returns their count."""
+    q0 = coef[1]
+    q1 = 2.0 * coef[2]
+    q2 = 3.0 * coef[3]
+    q3 = 4.0 * coef[4]
+    breaks = np.empty(4)
+    nb = _quadratic_roots(3.0 * q3, 2.0 * q2, q1, breaks[1:3]) + 1
+    breaks[0] = 0.0
+    breaks[nb] = 1.0
+    n = 0
+    for k in range(nb):
+        a = breaks[k]
+        b = breaks[k + 1]
+        fa = _cubic(q0, q1, q2, q3, a)
+        fb = _cubic(q0, q1, q2, q3, b)
+        if fa == 0.0:
+            if a > 0.0 and (n == 0 or out[n - 1] < a):
+                out[n] = a
+                n += 1
+            continue
+        if fa * fb >= 0.0:
+            continue
+        # monotone piece with a sign change: Illinois to ROOT_TOL
+        side = 0
+        for _ in range(200):
+            if b - a < ROOT_TOL:
+                break
+            m = a - fa * (b - a) / (fb - fa)
+            if m <= a or m >= b:
+                m = 0.5 * (a + b)
+            fm = _cubic(q0, q1, q2, q3, m)
+            if fm == 0.0:
+                a = b = m
+                break
+            if (fm < 0.0) == (fa < 0.0):
+                a = m
+                fa = fm
+                if side == 1:
+                    fb *= 0.5
+                side = 1
+            else:
+                b = m
+                fb = fm
+                if side == -1:
+                    fa *= 0.5
+                side = -1
+        out[n] = 0.5 * (a + b)
+        n += 1
+    return n
 
 
 @njit(cache=True)
@@ -111,23 +188,17 @@ def first_exit(coef, engaged):
     # Cheap rejection: |g(u) - g(0)| <= sum |c_k| on [0, 1].
     if h0 > abs(coef[1]) + abs(coef[2]) + abs(coef[3]) + abs(coef[4]):
         return -1.0
+    crit = np.empty(3)
+    n = critical_points(coef, crit)
     a = 0.0
     ha = h0 if h0 > 0.0 else 0.0
-    da = sign * poly_rate(coef, 0.0)
-    for k in range(1, SUBINTERVALS + 1):
-        ub = k / SUBINTERVALS
-        hb = sign * poly(coef, ub)
-        if hb < 0.0:
-            return _root(coef, sign, a, ub, ha, hb)
-        db = sign * poly_rate(coef, ub)
-        if da < 0.0 and db > 0.0:
-            um = _critical_point(coef, sign, a, ub)
-            hm = sign * poly(coef, um)
-            if hm < 0.0:  # grazing excursion across the surface and back
-                return _root(coef, sign, a, um, ha, hm)
-        a = ub
+    for k in range(n + 1):
+        b = crit[k] if k < n else 1.0
+        hb = sign * poly(coef, b)
+        if hb < 0.0:  # g is monotone on [a, b]: the exit is the one root there
+            return _root(coef, sign, a, b, ha, hb)
+        a = b
         ha = hb
-        da = db
     return -1.0
 
 
@@ -135,18 +206,11 @@ def first_exit(coef, engaged):
 def poly_max(coef, u_end):
     """Largest value of g on [0, u_end], end points and interior maxima included."""
     best = max(poly(coef, 0.0), poly(coef, u_end))
-    a = 0.0
-    da = poly_rate(coef, 0.0)
-    for k in range(1, SUBINTERVALS + 1):
-        ub = u_end * k / SUBINTERVALS
-        db = poly_rate(coef, ub)
-        if da > 0.0 and db < 0.0:
-            um = _critical_point(coef, -1.0, a, ub)
-            gm = poly(coef, um)
-            if gm > best:
-                best = gm
-        a = ub
-        da = db
+    crit = np.empty(3)
+    n = critical_points(coef, crit)
+    for k in range(n):
+        if crit[k] < u_end:
+            best = max(best, poly(coef, crit[k]))
     return best
 
 
