@@ -67,7 +67,7 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
     i0, i1 = variables.index(a0), variables.index(a1)
     ncols = min(3, n_panels)
     nrows = ceil(n_panels / ncols)
-    fig, axs = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 4.4 * nrows + 0.4),
+    fig, axs = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 5.0 * nrows + 0.4),
                             squeeze=False, constrained_layout=True)
     for k, index in enumerate(np.ndindex(*grid_shape)):
         ax = axs[k // ncols, k % ncols]
@@ -97,16 +97,19 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
         ax.set_xlabel(f"${AXIS_SYMBOLS.get(a0, a0)}$")
         ax.set_ylabel(f"${AXIS_SYMBOLS.get(a1, a1)}$")
         ax.set_title(panel_title(ds, index), fontsize=9)
-        ax.legend(handles=handles, fontsize=7, loc="upper left", framealpha=0.85)
+        # below the panel: a legend inside could hide basins and attractor dots
+        ax.legend(handles=handles, fontsize=7, loc="upper center",
+                  bbox_to_anchor=(0.5, -0.13), ncols=min(3, len(handles)), frameon=False)
     for k in range(n_panels, nrows * ncols):
         axs[k // ncols, k % ncols].axis("off")
     fixed = ds.attrs.get("plane_fixed") or ", ".join(
         f"{v} = 0" for v in variables if v not in (a0, a1))
+    fixed = f"; {fixed}" if fixed else ""
     import textwrap
 
     swept = set(str(ds.attrs.get("grid_swept", "")).split())
     params = "\n".join(textwrap.wrap(parameter_text(ds, exclude=swept), 60 * ncols))
-    fig.suptitle(f"{ds.attrs.get('model')} basins; {fixed}\n{params}", fontsize=9)
+    fig.suptitle(f"{ds.attrs.get('model')} basins{fixed}\n{params}", fontsize=9)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=130)
