@@ -51,6 +51,25 @@ def _progress_bar(total: int, initial: int = 0):
     return bar.update
 
 
+def _check_rk4_step(scene, strict: bool) -> None:
+    """Warn (or, with --strict, refuse) when the scene's fixed RK4 step is unstable at any
+    of its grid points."""
+    from .engine import Problem
+    from .step_stability import rk4_step_warning
+
+    points = [dict(scene.values)]
+    if scene.grid is not None and scene.system.bodies == 2:
+        points = [{**scene.values, **{k: v for k, v in scene.grid.point(i).items()
+                                      if k != "t0"}} for i in range(min(scene.grid.size, 10_000))]
+    for values in points:
+        message = rk4_step_warning(Problem(scene.system, values, scene.integrator))
+        if message:
+            if strict:
+                raise ConfigError(f"{scene.source}: {message}")
+            click.echo(f"softimpact: warning: {scene.source}: {message}", err=True)
+            return
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="softimpact")
 def main():
@@ -86,9 +105,11 @@ def _scheduler(ctx, param, value):
               help="Low resolution (planes <= 24 x 24, <= 100 samples) for previews and CI.")
 @click.option("--resolution", type=click.IntRange(min=1), default=None,
               help="Cap a plane's resolution per axis at N (previews, galleries).")
+@click.option("--strict", is_flag=True,
+              help="Refuse to start when a fixed RK4 step is unstable (instead of warning).")
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
-          resolution):
+          resolution, strict):
     """Run SCENE (a TOML file) and write its result to HDF5."""
     from .config import SWEEP_KINDS
     from .config import quick as quick_scene
@@ -104,6 +125,7 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
+    _check_rk4_step(sc, strict)
     if sc.analysis.kind in SWEEP_KINDS:
         from .sweep import run_sweep
 

@@ -36,3 +36,19 @@ def test_second_process_adds_and_third_reuses(tmp_path):
     assert run("body", tmp_path) == (0, 1)  # another specialization added to the index
     assert run("pair", tmp_path) == (1, 0)  # both load from disk in a fresh process
     assert run("body", tmp_path) == (1, 0)
+
+
+def test_cache_folder_changes_when_any_kernel_source_changes(tmp_path):
+    """numba only watches a function's own file; the folder key covers all of them."""
+    import shutil
+
+    from softimpact_cli._numba_cache_dir import PACKAGE, SOURCES, source_hash
+
+    for folder in SOURCES:
+        shutil.copytree(PACKAGE / folder, tmp_path / folder,
+                        ignore=shutil.ignore_patterns("__pycache__"))
+    before = source_hash(tmp_path)
+    assert before == source_hash(PACKAGE)
+    target = tmp_path / "kernels" / "switching.py"
+    target.write_text(target.read_text() + "\n# edited\n")
+    assert source_hash(tmp_path) != before
