@@ -30,7 +30,7 @@ def panel_title(ds, index: tuple[int, ...], always=("d", "phi")) -> str:
             continue
         v = point[a]
         text = (format_multiple(v, "\\pi", np.pi) if a == "phi" else
-                format_multiple(v, "T", T) if a == "t0" else f"{v:.6g}")
+                format_multiple(v, "T", T) if a == "t0" else f"{v:.6g}").replace("*", "")
         parts.append(f"${SYMBOLS[a]} = {text}$")
     if "t0" not in swept:
         mode = ds.attrs.get("t0_mode", "fixed")
