@@ -319,8 +319,8 @@ def info(result, as_json, compare):
             return
         for row in rows:
             click.echo(f"d={row['d']:.6g}, phi={row['phi']:.6g}, k_c={row['k_c']:.6g}, "
-                       f"c_c={row['c_c']:.6g} (t0 plane {row['t0_plane']:.4g}, "
-                       f"stability {row['t0_stability']:.4g})")
+                       f"c_c={row['c_c']:.6g} (t0 plane {row['t0_plane']}, "
+                       f"stability {row['t0_stability']})")
             click.echo(f"  {'solution':16s} {'plane':>7s} {'4-D':>7s}  95% interval")
             for name, v in row["shares"].items():
                 ci = v["ci95"] or [float("nan")] * 2
@@ -339,7 +339,8 @@ def info(result, as_json, compare):
     for key, value in summary.items():
         click.echo(f"{key:28s} {value}")
     for point in (points or [])[:50]:
-        where = ", ".join(f"{a}={point[a]:.6g}" for a in ("d", "phi", "k_c", "c_c", "t0"))
+        where = ", ".join(f"{a}={point[a]:.6g}" if isinstance(point[a], float) else
+                          f"{a}={point[a]}" for a in ("d", "phi", "k_c", "c_c", "t0"))
         shares = ", ".join(f"{n} {f:.3f}" for n, f in sorted(point["fractions"].items()))
         click.echo(f"  {where}: {shares}")
     if points and len(points) > 50:

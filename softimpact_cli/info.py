@@ -99,12 +99,16 @@ def grid_dims(ds) -> tuple[str, ...]:
     return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
 
 
-def grid_point(ds, index: tuple[int, ...]) -> dict[str, float]:
-    """Parameter values of the grid point at ``index`` (over grid_dims)."""
+def grid_point(ds, index: tuple[int, ...]) -> dict:
+    """Parameter values of the grid point at ``index`` (over grid_dims); t0 is "random"
+    when each sample has its own start time."""
     dims = grid_dims(ds)
     sel = dict(zip(dims, index, strict=True))
-    return {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
-            for a in GRID_AXES}
+    point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
+             for a in GRID_AXES}
+    if ds.attrs.get("t0_mode") == "random":
+        point["t0"] = "random"
+    return point
 
 
 def sweep_summary(ds) -> dict:

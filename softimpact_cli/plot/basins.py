@@ -35,7 +35,7 @@ def panel_title(ds, index: tuple[int, ...], always=("d", "phi")) -> str:
     if "t0" not in swept:
         mode = ds.attrs.get("t0_mode", "fixed")
         parts.append("random $t_0$" if mode == "random" else
-                     f"$t_0 = {format_multiple(point['t0'], 'T', T)}$")
+                     f"$t_0 = {format_multiple(point['t0'], 'T', T).replace('*', '')}$")
     return ", ".join(parts)
 
 
