@@ -107,9 +107,12 @@ def _scheduler(ctx, param, value):
               help="Cap a plane's resolution per axis at N (previews, galleries).")
 @click.option("--strict", is_flag=True,
               help="Refuse to start when a fixed RK4 step is unstable (instead of warning).")
+@click.option("--check", "check_n", type=click.IntRange(min=1), default=None, metavar="N",
+              help="Afterwards rerun N random trajectories at tightened settings and store "
+                   "the label change share and wall-time ratio in the result.")
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
-          resolution, strict):
+          resolution, strict, check_n):
     """Run SCENE (a TOML file) and write its result to HDF5."""
     from .config import SWEEP_KINDS
     from .config import quick as quick_scene
@@ -134,6 +137,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
                        progress=None if quiet else _progress_bar)
         click.echo(f"{sc.analysis.kind}: {ds.attrs['n']} trajectories "
                    f"({ds.attrs['wall_s']:.1f} s) -> {out}")
+        if check_n:
+            _store_check(sc, out, check_n)
         return
     if resume:
         raise ConfigError(f"{scene}: --resume is for sweeps (kind basins or stability)")
@@ -148,6 +153,47 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     click.echo(f"{sc.analysis.kind}: {ds.attrs.get('outcome', 'done')}"
                + (f", period {ds.attrs['period']}" if ds.attrs.get("period") else "")
                + f" ({ds.attrs['wall_s']:.2f} s) -> {out}")
+
+
+def _store_check(scene, out: Path, sample: int) -> None:
+    from .check import check_scene, report_attributes
+    from .store import add_attributes
+
+    report = check_scene(scene, sample)
+    add_attributes(out, report_attributes(report))
+    click.echo(_format_check(report))
+
+
+def _format_check(report: dict) -> str:
+    head = (f"check ({report['kind']}, {report['sample']} sampled, tightened settings: "
+            f"rtol and atol / 100, convergence_tol / 10, 2x periods, 4x RK4 steps): ")
+    if report["kind"] == "labels":
+        body = (f"{report['changed']} labels changed ({100 * report['changed_share']:.2f}%)"
+                + (f" [{', '.join(f'{k}: {v}' for k, v in report['changes'].items())}]"
+                   if report["changes"] else ""))
+    else:
+        body = f"largest change {report['max_change']:.3g}"
+    return (head + body + f"; wall {report['wall_s']:.2f} s vs {report['tight_wall_s']:.2f} s "
+            f"tightened (x{report['wall_ratio']:.2f})")
+
+
+@main.command()
+@click.argument("scene", type=click.Path(dir_okay=False))
+@click.option("--sample", type=click.IntRange(min=1), default=200, show_default=True,
+              help="Trajectories (sweeps) or phases (dcrit) rerun.")
+@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@_user_errors
+def check(scene, sample, seed, as_json):
+    """Rerun part of SCENE at tightened settings: label changes and wall-time ratio."""
+    from .check import check_scene
+
+    sc = load_scene(scene)
+    try:
+        report = check_scene(sc, sample, seed)
+    except ValueError as exc:
+        raise ConfigError(f"{scene}: {exc}") from None
+    click.echo(json.dumps(report, indent=2) if as_json else _format_check(report))
 
 
 @main.group()

@@ -27,6 +27,7 @@ def _plain(value):
 def describe(ds) -> dict:
     """Summary of a result dataset: analysis, outcome, timings, provenance."""
     out = {k: _plain(ds.attrs[k]) for k in SUMMARY_KEYS if k in ds.attrs}
+    out.update({k: _plain(v) for k, v in ds.attrs.items() if k.startswith("check_")})
     if "orbit" in ds:
         out["orbit"] = _plain(ds["orbit"].values)
         out["variables"] = [str(v) for v in ds["variable"].values]

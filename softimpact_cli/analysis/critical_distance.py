@@ -24,8 +24,9 @@ TIGHT = IntegratorSettings(method="dopri5", rtol=1e-12, atol=1e-13)
 NO_CONTACT_D = 1e12  # a gap no orbit reaches: the pair integrates uncoupled
 
 
-def uncoupled_pair(system: System, values: dict, phi: float) -> Problem:
-    return Problem(system, {**values, "phi": phi, "d": NO_CONTACT_D}, TIGHT)
+def uncoupled_pair(system: System, values: dict, phi: float,
+                   integrator: IntegratorSettings = TIGHT) -> Problem:
+    return Problem(system, {**values, "phi": phi, "d": NO_CONTACT_D}, integrator)
 
 
 def relative_trace(problem: Problem, start: np.ndarray, periods: int, samples: int
@@ -89,7 +90,8 @@ def critical_distance(problem: Problem, start: np.ndarray, periods: int, samples
 
 
 def critical_distances(system: System, values: dict, left: list, phis: np.ndarray,
-                       samples: int = 512, progress=None) -> xr.Dataset:
+                       samples: int = 512, progress=None,
+                       integrator: IntegratorSettings = TIGHT) -> xr.Dataset:
     """d_crit(phi) for every combination of the left attractors, at each phi.
 
     Returns a Dataset with d_crit(combination, phi) and t_max(combination, phi).
@@ -99,10 +101,10 @@ def critical_distances(system: System, values: dict, left: list, phis: np.ndarra
     rows: dict[str, list] = {}
     times: dict[str, list] = {}
     for phi in phis:
-        problem = uncoupled_pair(system, values, float(phi))
+        problem = uncoupled_pair(system, values, float(phi), integrator)
         from .catalogue import body_problem
 
-        right = right_attractors(body_problem(system, values, TIGHT), left, float(phi),
+        right = right_attractors(body_problem(system, values, integrator), left, float(phi),
                                  body["right_sign"], body["right_phase"])
         for combo in combinations(left, right):
             q = combo.orbit.shape[0]

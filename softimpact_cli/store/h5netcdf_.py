@@ -37,3 +37,12 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
     """Open a result file fully into memory (the file is closed on return)."""
     with xr.open_dataset(path, engine=ENGINE) as ds:
         return ds.load()
+
+
+def add_attributes(path: str | os.PathLike, attrs: dict) -> None:
+    """Add global attributes to a finished result file in place."""
+    import h5py
+
+    with h5py.File(path, "a") as f:
+        for key, value in attrs.items():
+            f.attrs[key] = _netcdf_safe(value)

@@ -1,0 +1,119 @@
+"""Error against run time: rerun (part of) a scene at tighter settings and compare.
+
+Tightened settings: rtol and atol / 100, convergence_tol / 10, twice the period budget,
+4x the RK4 steps. Sweeps compare the labels of a random subset of trajectories (the
+share that changes is the estimated label error); critical-distance scenes compare
+d_crit at a subset of phases; bifurcation scenes compare destruction points. Each
+report carries both wall times and their ratio.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from .config import SWEEP_KINDS, IntegratorSettings, Scene
+
+
+def tightened(s: IntegratorSettings) -> IntegratorSettings:
+    return replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
+                   convergence_tol=s.convergence_tol / 10, max_periods=2 * s.max_periods,
+                   steps_per_period=4 * s.steps_per_period)
+
+
+def check_scene(scene: Scene, sample: int = 200, seed: int = 0) -> dict:
+    """A report comparing the scene's settings with tightened ones on a random subset."""
+    kind = scene.analysis.kind
+    if kind in SWEEP_KINDS:
+        return _check_sweep(scene, sample, seed)
+    if kind == "dcrit":
+        return _check_dcrit(scene, sample, seed)
+    if kind == "bifurcation":
+        return _check_bifurcation(scene)
+    raise ValueError(f"check covers sweeps, dcrit and bifurcation scenes, not {kind!r}")
+
+
+def _check_sweep(scene: Scene, sample: int, seed: int) -> dict:
+    from .labels import name_of
+    from .sweep.chunks import SweepContext, run_chunk
+    from .sweep.runner import prepare_catalogues
+
+    catalogues, names = prepare_catalogues(scene)
+    ic = scene.initial_conditions
+    t0 = None if "t0" in scene.grid.swept else (
+        ic.random_t0(2 * np.pi / float(scene.values["w"])) if ic.t0 is None
+        else np.full(ic.count, float(ic.t0)))
+    base = SweepContext(scene.system.model, scene.system.bodies, dict(scene.values),
+                        scene.integrator, scene.grid, ic.array(), t0, catalogues, names,
+                        scene.analysis.label_tol)
+    tight = replace(base, integrator=tightened(scene.integrator))
+    total = scene.grid.size * ic.count
+    rng = np.random.default_rng(seed)
+    picks = np.sort(rng.choice(total, size=min(sample, total), replace=False))
+    walls = {}
+    labels = {}
+    for key, ctx in (("scene", base), ("tight", tight)):
+        start = time.perf_counter()
+        labels[key] = np.array([run_chunk(ctx, int(i), int(i) + 1)["label"][0] for i in picks])
+        walls[key] = time.perf_counter() - start
+    changed = labels["scene"] != labels["tight"]
+    changes: dict[str, int] = {}
+    for a, b in zip(labels["scene"][changed], labels["tight"][changed], strict=True):
+        key = f"{name_of(a, names)} -> {name_of(b, names)}"
+        changes[key] = changes.get(key, 0) + 1
+    return {"kind": "labels", "sample": int(picks.size), "changed": int(changed.sum()),
+            "changed_share": float(changed.mean()) if picks.size else 0.0,
+            "changes": changes, "wall_s": walls["scene"], "tight_wall_s": walls["tight"],
+            "wall_ratio": walls["tight"] / max(walls["scene"], 1e-12)}
+
+
+def _check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
+    from .analysis import critical_distance as cd
+    from .analysis.catalogue import build_catalogue, sample_states
+
+    c = scene.catalogue
+    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    rng = np.random.default_rng(seed)
+    phis = np.sort(rng.choice(np.array(scene.analysis.phis), size=min(sample, 16),
+                              replace=False))
+    out = {}
+    for key, settings in (("scene", cd.TIGHT), ("tight", tightened(cd.TIGHT))):
+        start = time.perf_counter()
+        ds = cd.critical_distances(scene.system, dict(scene.values), list(cat.attractors),
+                                   phis, scene.analysis.samples, integrator=settings)
+        out[key] = (ds["d_crit"].values, time.perf_counter() - start)
+    diff = float(np.max(np.abs(out["scene"][0] - out["tight"][0])))
+    return {"kind": "d_crit", "sample": int(phis.size), "max_change": diff,
+            "wall_s": out["scene"][1], "tight_wall_s": out["tight"][1],
+            "wall_ratio": out["tight"][1] / max(out["scene"][1], 1e-12)}
+
+
+def _check_bifurcation(scene: Scene) -> dict:
+    from .run import bifurcation_result
+
+    start = time.perf_counter()
+    a = bifurcation_result(scene)
+    mid = time.perf_counter()
+    b = bifurcation_result(replace(scene, integrator=tightened(scene.integrator),
+                                   analysis=replace(scene.analysis,
+                                                    step=scene.analysis.step / 2)))
+    end = time.perf_counter()
+    da, db = a["destroyed_at"].values, b["destroyed_at"].values
+    both = np.isfinite(da) & np.isfinite(db)
+    changed = np.sum(np.isfinite(da) != np.isfinite(db))
+    return {"kind": "destruction points", "sample": int(da.size),
+            "max_change": float(np.max(np.abs(da[both] - db[both]))) if both.any() else 0.0,
+            "appeared_or_vanished": int(changed), "wall_s": mid - start,
+            "tight_wall_s": end - mid, "wall_ratio": (end - mid) / max(mid - start, 1e-12)}
+
+
+def report_attributes(report: dict) -> dict:
+    """The report as netCDF attributes (``check_*``)."""
+    out = {}
+    for k, v in report.items():
+        out[f"check_{k}"] = (", ".join(f"{a}: {b}" for a, b in v.items()) or "none"
+                             if isinstance(v, dict) else v)
+    return out

@@ -1,0 +1,69 @@
+"""Error against run time: reruns at tightened settings."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import xarray as xr
+
+from softimpact_cli.check import check_scene, tightened
+from softimpact_cli.config import IntegratorSettings, parse_scene
+
+SWEEP = """
+[system]
+model = "duffing"
+[coupling]
+d = 10.5
+phi = 5.28
+[analysis]
+kind = "stability"
+[initial_conditions]
+kind = "random"
+box = {x1 = [-12, 12], v1 = [-12, 12], x2 = [-12, 12], v2 = [-12, 12]}
+n = 50
+[catalogue]
+grid = 6
+random = 30
+[output]
+path = "{out}"
+"""
+
+
+def test_tightened_settings():
+    t = tightened(IntegratorSettings())
+    assert t.rtol == 1e-10 and t.atol == 1e-12 and t.convergence_tol == 1e-7
+    assert t.max_periods == 6000 and t.steps_per_period == 5760
+
+
+def test_sweep_check_report():
+    report = check_scene(parse_scene(SWEEP.replace("{out}", "x.h5"), "s.toml"), sample=12)
+    assert report["sample"] == 12 and 0 <= report["changed"] <= 12
+    assert report["changed_share"] == report["changed"] / 12
+    assert sum(report["changes"].values()) == report["changed"]
+    assert report["wall_s"] > 0 and report["tight_wall_s"] > 0
+
+
+def test_dcrit_check_is_small():
+    scene = parse_scene('[system]\nmodel = "duffing"\n[analysis]\nkind = "dcrit"\n'
+                        '[grid]\nphi = [0.5, 2.0, 4.0]\n[catalogue]\ngrid = 6\nrandom = 30\n')
+    report = check_scene(scene, sample=3)
+    assert report["sample"] == 3 and report["max_change"] < 1e-8
+
+
+def test_sweep_check_stored_in_result(tmp_path):
+    out = tmp_path / "c.h5"
+    scene = tmp_path / "c.toml"
+    scene.write_text(SWEEP.replace("{out}", str(out)))
+    proc = subprocess.run([sys.executable, "-m", "softimpact_cli", "sweep", str(scene),
+                           "--check", "10", "-q", "--workers", "1"], capture_output=True,
+                          text=True)
+    assert proc.returncode == 0, proc.stderr
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["check_sample"] == 10
+        assert 0.0 <= ds.attrs["check_changed_share"] <= 1.0
+        assert np.isfinite(ds.attrs["check_wall_ratio"])
+    info = json.loads(subprocess.run([sys.executable, "-m", "softimpact_cli", "info",
+                                      str(out), "--json"], capture_output=True,
+                                     text=True).stdout)
+    assert info["check_sample"] == 10 and "wall_s" in info
