@@ -201,6 +201,22 @@ def plot():
     """Draw figures from result files."""
 
 
+def _draw(result: str, output: str, kind: str, draw, complete: bool = False,
+          accept=None, expected: str | None = None) -> None:
+    """Open RESULT, check that it holds a ``kind`` analysis (or passes ``accept``, a
+    predicate on its attributes, described by ``expected``), draw it to OUTPUT."""
+    ds = _open(result)
+    ok = accept(ds.attrs) if accept else ds.attrs.get("analysis") == kind
+    if not ok or (complete and int(ds.attrs.get("complete", 0)) != 1):
+        what = expected or (f"a complete {kind} result" if complete else f"a {kind} result")
+        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not {what}")
+    check_writable(Path(output), "command line", "-o/--output")
+    try:
+        click.echo(f"figure -> {draw(ds)}")
+    except ValueError as exc:
+        raise ConfigError(f"{result}: {exc}") from None
+
+
 @plot.command("trajectory")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
@@ -212,12 +228,7 @@ def plot_trajectory_cmd(result, output, last_periods):
     """Time series, phase portraits and Poincare points of a trajectory RESULT."""
     from .plot.trajectory import plot_trajectory
 
-    ds = _open(result)
-    if ds.attrs.get("analysis") != "trajectory":
-        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not a "
-                          "trajectory")
-    check_writable(Path(output), "command line", "-o/--output")
-    click.echo(f"figure -> {plot_trajectory(ds, output, last_periods)}")
+    _draw(result, output, "trajectory", lambda ds: plot_trajectory(ds, output, last_periods))
 
 
 @plot.command("basins")
@@ -231,14 +242,9 @@ def plot_basins_cmd(result, output, max_panels):
     """Basins of attraction of a plane sweep RESULT, one panel per grid point."""
     from .plot.basins import plot_basins
 
-    ds = _open(result)
-    if ds.attrs.get("ic_kind") != "plane" or int(ds.attrs.get("complete", 0)) != 1:
-        raise ConfigError(f"{result}: not a complete sweep over a plane of initial conditions")
-    check_writable(Path(output), "command line", "-o/--output")
-    try:
-        click.echo(f"figure -> {plot_basins(ds, output, max_panels)}")
-    except ValueError as exc:
-        raise ConfigError(f"{result}: {exc}") from None
+    _draw(result, output, "basins", lambda ds: plot_basins(ds, output, max_panels),
+          complete=True, accept=lambda a: a.get("ic_kind") == "plane",
+          expected="a complete sweep over a plane of initial conditions")
 
 
 @plot.command("dcrit")
@@ -252,14 +258,14 @@ def plot_dcrit_cmd(result, output, combination):
     """Critical-distance curves, surviving-combination regions and x1 - x2 traces."""
     from .plot.dcrit import plot_dcrit
 
-    ds = _open(result)
-    if ds.attrs.get("analysis") != "dcrit":
-        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not dcrit")
-    names = [str(n) for n in ds["combination_label"].values]
-    if combination is not None and combination not in names:
-        raise ConfigError(f"--combination: {combination!r} is not one of {', '.join(names)}")
-    check_writable(Path(output), "command line", "-o/--output")
-    click.echo(f"figure -> {plot_dcrit(ds, output, combination)}")
+    def draw(ds):
+        names = [str(n) for n in ds["combination_label"].values]
+        if combination is not None and combination not in names:
+            raise ConfigError(f"--combination: {combination!r} is not one of "
+                              f"{', '.join(names)}")
+        return plot_dcrit(ds, output, combination)
+
+    _draw(result, output, "dcrit", draw)
 
 
 @plot.command("stability")
@@ -274,16 +280,12 @@ def plot_stability_cmd(result, output, against):
     from .analysis.stability import basin_stability
     from .plot.stability import plot_stability
 
-    ds = _open(result)
-    if ds.attrs.get("analysis") != "stability" or int(ds.attrs.get("complete", 0)) != 1:
-        raise ConfigError(f"{result}: not a complete stability result")
-    swept = str(ds.attrs.get("grid_swept", "")).split()
-    against = against or (swept[0] if swept else "c_c")
-    check_writable(Path(output), "command line", "-o/--output")
-    try:
-        click.echo(f"figure -> {plot_stability(ds, basin_stability(ds), output, against)}")
-    except ValueError as exc:
-        raise ConfigError(f"{result}: {exc}") from None
+    def draw(ds):
+        swept = str(ds.attrs.get("grid_swept", "")).split()
+        axis = against or (swept[0] if swept else "c_c")
+        return plot_stability(ds, basin_stability(ds), output, axis)
+
+    _draw(result, output, "stability", draw, complete=True)
 
 
 @plot.command("bifurcation")
@@ -295,12 +297,7 @@ def plot_bifurcation_cmd(result, output):
     """Section displacements of both bodies against d, destruction points marked."""
     from .plot.bifurcation import plot_bifurcation
 
-    ds = _open(result)
-    if ds.attrs.get("analysis") != "bifurcation":
-        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not a "
-                          "bifurcation")
-    check_writable(Path(output), "command line", "-o/--output")
-    click.echo(f"figure -> {plot_bifurcation(ds, output)}")
+    _draw(result, output, "bifurcation", lambda ds: plot_bifurcation(ds, output))
 
 
 @plot.command("map")
@@ -312,14 +309,7 @@ def plot_map_cmd(result, output):
     """Predicted and found numbers of coexisting solutions over two parameters."""
     from .plot.maps import plot_map
 
-    ds = _open(result)
-    if ds.attrs.get("analysis") != "map" or int(ds.attrs.get("complete", 0)) != 1:
-        raise ConfigError(f"{result}: not a complete map result")
-    check_writable(Path(output), "command line", "-o/--output")
-    try:
-        click.echo(f"figure -> {plot_map(ds, output)}")
-    except ValueError as exc:
-        raise ConfigError(f"{result}: {exc}") from None
+    _draw(result, output, "map", lambda ds: plot_map(ds, output), complete=True)
 
 
 @plot.command("catalogue")
@@ -331,12 +321,7 @@ def plot_catalogue_cmd(result, output):
     """Attractors on the phase plane and one panel per combination of a catalogue RESULT."""
     from .plot.catalogue import plot_catalogue
 
-    ds = _open(result)
-    if ds.attrs.get("analysis") != "catalogue":
-        raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not a "
-                          "catalogue")
-    check_writable(Path(output), "command line", "-o/--output")
-    click.echo(f"figure -> {plot_catalogue(ds, output)}")
+    _draw(result, output, "catalogue", lambda ds: plot_catalogue(ds, output))
 
 
 @main.command()

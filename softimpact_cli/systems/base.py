@@ -136,3 +136,19 @@ COUPLING_PARAMETERS = (
 )
 
 LAWS = ("paper", "no-tension")
+
+
+def pack_parameters(parameters: tuple[Parameter, ...], values: Mapping[str, float]
+                    ) -> np.ndarray:
+    """Body parameters in declaration order, as float64."""
+    return np.array([float(values[p.name]) for p in parameters])
+
+
+def pack_coupling(values: Mapping[str, float]) -> np.ndarray:
+    """The coupling block every pair appends to its body block:
+    ``d, k_c, c_c, cos phi, sin phi, no_tension, phi`` (cos and sin precomputed so the
+    right-hand side needs one sine and one cosine per evaluation)."""
+    phi = float(values["phi"])
+    return np.array([float(values["d"]), float(values["k_c"]), float(values["c_c"]),
+                     np.cos(phi), np.sin(phi),
+                     1.0 if values.get("law", "paper") == "no-tension" else 0.0, phi])

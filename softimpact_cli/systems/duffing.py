@@ -16,7 +16,16 @@ from math import cos, sin
 import numpy as np
 from numba import njit
 
-from .base import COUPLING_PARAMETERS, LAWS, Parameter, Surfaces, System, relevance_table
+from .base import (
+    COUPLING_PARAMETERS,
+    LAWS,
+    Parameter,
+    Surfaces,
+    System,
+    pack_coupling,
+    pack_parameters,
+    relevance_table,
+)
 
 BODY_PARAMETERS = (
     Parameter("c", "1", 0.05, "viscous damping of each body", minimum=0.0),
@@ -39,27 +48,12 @@ FORCE_BIT = 2  # surface 1 (no-tension law only): k_c delta + c_c delta' >= 0
 
 def pack_body(values: Mapping[str, float]) -> np.ndarray:
     """Body parameters as the float64 array ``[c, k1, k2, F, w]``."""
-    return np.array([float(values[p.name]) for p in BODY_PARAMETERS])
+    return pack_parameters(BODY_PARAMETERS, values)
 
 
 def pack_pair(values: Mapping[str, float]) -> np.ndarray:
-    """Pair parameters: body block, then ``d, k_c, c_c, cos phi, sin phi, no_tension, phi``."""
-    phi = float(values["phi"])
-    law = values.get("law", "paper")
-    return np.concatenate(
-        [
-            pack_body(values),
-            [
-                float(values["d"]),
-                float(values["k_c"]),
-                float(values["c_c"]),
-                cos(phi),
-                sin(phi),
-                1.0 if law == "no-tension" else 0.0,
-                phi,
-            ],
-        ]
-    )
+    """Pair parameters: the body block, then the coupling block (see ``pack_coupling``)."""
+    return np.concatenate([pack_body(values), pack_coupling(values)])
 
 
 @njit(cache=True)
