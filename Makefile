@@ -54,8 +54,6 @@ QUICKFLAG := $(if $(QUICK),--quick,)
 BASIN_FIGS := fig03 fig06 fig09 fig12 fig13 fig14ab fig14cd
 FIGURES := $(BASIN_FIGS)
 
-figures: catalogues $(FIGURES)
-
 fig03: configs/figures/fig03_duffing_single_basins.toml
 fig06: configs/figures/fig06_duffing_basins.toml
 fig09: configs/figures/fig09_bilinear_single_basins.toml
@@ -123,3 +121,6 @@ lint: $(STAMP)
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache
 	find . -name __pycache__ -type d -prune -exec rm -rf {} +
+
+# every figure of the study (defined last: FIGURES is complete only here)
+figures: catalogues $(FIGURES)
