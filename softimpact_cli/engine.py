@@ -73,6 +73,38 @@ class Problem:
 
 
 @dataclass(frozen=True)
+class KnownOrbits:
+    """Stable orbits known before integrating (see ``kernels.orbit.classify_near``).
+
+    points : (K, Q, dim) section points in time order, rows beyond each period unused;
+    periods : (K,) int periods; max_g : (K,) max of x1 - x2 - d along each orbit (< 0:
+    no contact); capture_tol, capture_hits : the capture rule.
+    """
+
+    points: np.ndarray
+    periods: np.ndarray
+    max_g: np.ndarray
+    capture_tol: float
+    capture_hits: int
+
+    @classmethod
+    def from_orbits(cls, orbits: list[np.ndarray], max_g, capture_tol: float,
+                    capture_hits: int, dim: int) -> KnownOrbits:
+        """Pack orbits, each (q, dim) in time order, into the kernel's arrays."""
+        q_max = max((len(o) for o in orbits), default=1)
+        points = np.zeros((len(orbits), q_max, dim))
+        for k, o in enumerate(orbits):
+            points[k, : len(o)] = o
+        return cls(points, np.array([len(o) for o in orbits], dtype=np.int64),
+                   np.asarray(max_g, dtype=np.float64).reshape(len(orbits)),
+                   float(capture_tol), int(capture_hits))
+
+
+def no_known_orbits(dim: int) -> KnownOrbits:
+    return KnownOrbits.from_orbits([], [], 0.0, 1, dim)
+
+
+@dataclass(frozen=True)
 class Classification:
     """Outcome of one trajectory on the stroboscopic section.
 
@@ -88,6 +120,7 @@ class Classification:
     contacts: int
     max_penetration: float
     counters: dict[str, int]
+    captured: int = -1  # index of the known orbit that captured it (-1: converged by itself)
 
     @property
     def outcome(self) -> str:
@@ -98,20 +131,26 @@ class Classification:
         return self.status == 0 and self.max_penetration >= 0.0
 
 
-def classify_state(problem: Problem, state, t0: float = 0.0) -> Classification:
-    """Integrate from ``state`` imposed at time ``t0`` until classified."""
+def classify_state(problem: Problem, state, t0: float = 0.0,
+                   known: KnownOrbits | None = None) -> Classification:
+    """Integrate from ``state`` imposed at time ``t0`` until classified (or captured by
+    one of the ``known`` stable orbits of this parameter point)."""
     y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
     s = problem.integrator
+    if known is None:
+        known = no_known_orbits(y0.shape[0])
     A, b, rel, contact = problem.kernel_args()
-    status, q, n_used, orbit_pts, contacts, max_g, counters = orbit.classify(
+    status, q, n_used, orbit_pts, contacts, max_g, counters, captured = orbit.classify_near(
         problem.advance, problem.system.rhs, problem.params, y0, float(t0), problem.period,
         A, b, rel, contact, problem.options(), s.max_periods, s.max_orbit_period,
-        s.convergence_tol,
+        s.convergence_tol, known.points, known.periods, known.max_g, known.capture_tol,
+        known.capture_hits,
     )
     return Classification(
         status=int(status), period=int(q), periods_used=int(n_used),
         orbit=orbit_pts[:q].copy(), contacts=int(contacts), max_penetration=float(max_g),
         counters=dict(zip(COUNTER_NAMES, map(int, counters), strict=True)),
+        captured=int(captured),
     )
 
 

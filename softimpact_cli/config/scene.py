@@ -49,6 +49,8 @@ class IntegratorSettings:
     max_periods: int = 3000
     max_orbit_period: int = 30
     convergence_tol: float = 1e-6
+    capture_tol: float = 1e-2
+    capture_hits: int = 3
     divergence_bound: float = 1e6
     max_steps_per_period: int = 200_000
     max_switches_per_period: int = 10_000
@@ -186,6 +188,9 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
         max_periods=sec.integer("max_periods", d.max_periods, 1),
         max_orbit_period=sec.integer("max_orbit_period", d.max_orbit_period, 1, 1000),
         convergence_tol=sec.number("convergence_tol", d.convergence_tol, positive),
+        capture_tol=sec.number("capture_tol", d.capture_tol,
+                               lambda v: None if 0 <= v <= 0.1 else "must be in [0, 0.1]"),
+        capture_hits=sec.integer("capture_hits", d.capture_hits, 1, 1000),
         divergence_bound=sec.number("divergence_bound", d.divergence_bound, positive),
         max_steps_per_period=sec.integer("max_steps_per_period", d.max_steps_per_period, 10),
         max_switches_per_period=sec.integer("max_switches_per_period",

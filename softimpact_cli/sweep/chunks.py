@@ -12,10 +12,12 @@ import numpy as np
 
 from ..analysis.catalogue import Catalogue, label_orbit
 from ..config import GRID_AXES, Grid, IntegratorSettings
-from ..engine import Problem, classify_state
+from ..engine import KnownOrbits, Problem, classify_state
 from ..kernels.status import outcome
 from ..labels import DIVERGED_CODE, UNRESOLVED_CODE, code_of
 from ..systems import get_system
+
+CAPTURE_MARGIN = 10.0  # d - d_crit must exceed this many capture radii
 
 RESULT_FIELDS = {  # name -> dtype of the per-trajectory arrays a chunk returns
     "label": np.int32,
@@ -24,6 +26,7 @@ RESULT_FIELDS = {  # name -> dtype of the per-trajectory arrays a chunk returns
     "periods_used": np.int32,
     "contacts": np.int32,
     "max_penetration": np.float32,
+    "captured": np.int8,
 }
 
 
@@ -32,7 +35,9 @@ class SweepContext:
     """Everything a worker needs, shared by all chunks.
 
     states : (n_ic, dim) initial states; t0 : (n_ic,) start times per sample, or None to
-    take them from the grid's t0 axis; catalogues : one per phi value of the grid.
+    take them from the grid's t0 axis; catalogues : one per phi value of the grid;
+    known : per phi value, the stable non-impacting orbits a trajectory may be captured
+    by, as (section points (q, dim) in time order, d_crit) pairs (None: no capture).
     """
 
     model: str
@@ -45,6 +50,23 @@ class SweepContext:
     catalogues: dict
     names: tuple[str, ...]
     label_tol: float
+    known: dict | None = None
+
+    def known_orbits(self, values: dict) -> KnownOrbits | None:
+        """The known orbits that exist at these parameter values, safely clear of contact:
+        d_crit below d by CAPTURE_MARGIN times the capture radius (a captured trajectory
+        must not touch the stop while it settles)."""
+        s = self.integrator
+        if self.known is None or s.capture_tol <= 0.0:
+            return None
+        d = float(values.get("d", np.inf))
+        keep = []
+        for points, d_crit in self.known.get(float(values.get("phi", 0.0)), ()):
+            radius = s.capture_tol * max(1.0, float(np.max(np.abs(points))))
+            if d_crit + CAPTURE_MARGIN * radius < d:
+                keep.append((points, d_crit - d))
+        return KnownOrbits.from_orbits([o for o, _ in keep], [g for _, g in keep],
+                                       s.capture_tol, s.capture_hits, self.states.shape[1])
 
     def point_values(self, point: int) -> tuple[dict, float]:
         """(parameter values, grid t0) of grid point number ``point``."""
@@ -68,6 +90,7 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     system = get_system(ctx.model, ctx.bodies)
     n_ic = ctx.states.shape[0]
     problem = None
+    known = None
     current = -1
     catalogue: Catalogue | None = None
     for k in range(n):
@@ -77,9 +100,10 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             values, grid_t0 = ctx.point_values(point)
             problem = Problem(system, values, ctx.integrator)
             catalogue = ctx.catalogues[float(values.get("phi", 0.0))]
+            known = ctx.known_orbits(values)
             current = point
         t0 = grid_t0 if ctx.t0 is None else float(ctx.t0[ic])
-        cls = classify_state(problem, ctx.states[ic], t0)
+        cls = classify_state(problem, ctx.states[ic], t0, known)
         if cls.status == 0:
             label = label_orbit(catalogue, cls.orbit, cls.impacting, ctx.label_tol)
             code = code_of(label, ctx.names)
@@ -93,5 +117,6 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
         out["periods_used"][k] = cls.periods_used
         out["contacts"][k] = cls.contacts
         out["max_penetration"][k] = cls.max_penetration
+        out["captured"][k] = cls.captured >= 0
     out["orbits"] = orbits
     return out

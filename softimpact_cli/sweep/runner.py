@@ -52,6 +52,48 @@ def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ..
     return catalogues, names
 
 
+def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
+    """Per phi, the stable non-impacting orbits a trajectory may be captured by, each as
+    (section points (q, dim) in time order, d_crit); None when capture is off.
+
+    One body: every stable attractor (d_crit = -inf, there is no stop). A pair: every
+    combination of two stable attractors with its critical distance, located on the flow
+    (``analysis.critical_distance``); which of them exist depends on d, decided per grid
+    point by ``SweepContext.known_orbits``.
+    """
+    if scene.integrator.capture_tol <= 0.0:
+        return None
+    from ..analysis.critical_distance import critical_distance, uncoupled_pair
+
+    known = {}
+    for phi, cat in catalogues.items():
+        if scene.system.bodies == 1:
+            known[phi] = [(a.points, -np.inf) for a in cat.attractors if a.stable]
+            continue
+        problem = uncoupled_pair(scene.system, dict(scene.values), phi)
+        known[phi] = [(c.orbit, critical_distance(problem, c.orbit[0], len(c.orbit), 256)[0])
+                      for c in cat.combinations if c.left.stable and c.right.stable]
+    return known
+
+
+def sweep_context(scene: Scene, catalogues: dict, names: tuple[str, ...],
+                  t0_per_sample: np.ndarray | None) -> SweepContext:
+    """What every worker needs: the scene's grid, states, catalogues and capture orbits."""
+    ic = scene.initial_conditions
+    if t0_per_sample is not None:
+        t0 = t0_per_sample
+    elif "t0" in scene.grid.swept:
+        t0 = None
+    else:
+        t0 = np.full(ic.count, float(ic.t0))
+    return SweepContext(
+        model=scene.system.model, bodies=scene.system.bodies, values=dict(scene.values),
+        integrator=scene.integrator, grid=scene.grid, states=ic.array(), t0=t0,
+        catalogues=catalogues, names=names, label_tol=scene.analysis.label_tol,
+        known=capturable_orbits(scene, catalogues),
+    )
+
+
 def _header(scene: Scene, plan: Plan, catalogue: Catalogue) -> xr.Dataset:
     ds = catalogue_dataset(catalogue, scene.system, scene.integrator)
     ds.attrs.update(provenance(scene, time.time(), time.time(), 0.0))
@@ -101,13 +143,7 @@ def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: st
     t0_per_sample = None
     if ic.t0 is None:
         t0_per_sample = ic.random_t0(2 * np.pi / float(scene.values["w"]))
-    context = SweepContext(
-        model=scene.system.model, bodies=scene.system.bodies, values=dict(scene.values),
-        integrator=scene.integrator, grid=scene.grid, states=ic.array(),
-        t0=t0_per_sample if t0_per_sample is not None else
-        (None if "t0" in scene.grid.swept else np.full(ic.count, float(ic.t0))),
-        catalogues=catalogues, names=names, label_tol=scene.analysis.label_tol,
-    )
+    context = sweep_context(scene, catalogues, names, t0_per_sample)
     if not resume:
         first = next(iter(catalogues.values()))
         if overwrite:
