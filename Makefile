@@ -6,7 +6,7 @@ SI := $(VENV)/bin/softimpact
 STAMP := $(VENV)/.installed-stamp
 PYTEST_ARGS ?=
 
-.PHONY: install test test-nojit demo trajectory lint clean bench catalogues fig04 fig10 fig13-catalogue
+.PHONY: install test test-nojit demo trajectory lint clean bench bench-precision catalogues fig04 fig10 fig13-catalogue
 
 install: $(STAMP)
 
@@ -114,6 +114,12 @@ $(BASIN_FIGS): $(STAMP)
 RES ?= 100
 bench: $(STAMP)
 	$(PY) benchmarks/bench_basin.py --resolution $(RES)
+
+# Work-precision: error vs wall time of every integrator setting on a smooth trajectory,
+# trajectories through contacts and the figure 6(d) basin (results/bench/precision.md,
+# .png; ~15 min on 2 cores, the basin reference cached). QUICK=1 for a smoke run.
+bench-precision: $(STAMP)
+	$(PY) benchmarks/bench_precision.py $(QUICKFLAG)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

@@ -30,8 +30,6 @@ import argparse
 import cProfile
 import io
 import multiprocessing as mp
-import os
-import platform
 import pstats
 import sys
 import tempfile
@@ -41,53 +39,31 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
+from _common import (  # the benchmarks folder is on sys.path when this script runs
+    ROOT,
+    WORKERS,
+    fmt_time,
+    label_states,
+    load,
+    machine,
+    scene_at,
+)
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+from softimpact_cli.analysis.catalogue import label_orbit
+from softimpact_cli.config import parse_scene
+from softimpact_cli.engine import Problem, classify_state, flow
+from softimpact_cli.kernels import orbit as orbit_kernels
+from softimpact_cli.kernels.status import outcome
+from softimpact_cli.labels import DIVERGED, UNRESOLVED, name_of
+from softimpact_cli.sweep import executors, runner
+from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep
 
-from softimpact_cli.analysis.catalogue import label_orbit  # noqa: E402
-from softimpact_cli.config import parse_scene  # noqa: E402
-from softimpact_cli.engine import Problem, classify_state, flow  # noqa: E402
-from softimpact_cli.kernels import orbit as orbit_kernels  # noqa: E402
-from softimpact_cli.kernels.status import outcome  # noqa: E402
-from softimpact_cli.labels import DIVERGED, UNRESOLVED, name_of  # noqa: E402
-from softimpact_cli.sweep import executors, runner  # noqa: E402
-from softimpact_cli.sweep.chunks import SweepContext  # noqa: E402
-from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep  # noqa: E402
-
-WORKERS = 2
 STUDY_PERIODS = 1000  # the study's fixed transient (forcing periods)
 STUDY_CLASSIFY_PERIODS = 100  # after it: periods allowed to find the repeat
 SCIPY_TRANSIENT = 300
 SCIPY_RECORD = 60  # recorded stroboscopic points after the transient
 SCIPY_REPEAT_TOL = 1e-5  # section points repeating to this (scaled), rtol 1e-8 integration
 MAX_ORBIT_PERIOD = 30
-
-BASIN_SCENE = """\
-# figure 6(d): as configs/demo_basins.toml, at the benchmark's resolution
-[system]
-model = "duffing"
-
-[coupling]
-d = 6.0
-phi = 0.0
-k_c = 8.0
-c_c = 10.0
-
-[analysis]
-kind = "basins"
-
-[initial_conditions]
-kind = "plane"
-axes = ["x1", "x2"]
-ranges = [[-12.0, 12.0], [-12.0, 12.0]]
-resolution = [{n}, {n}]
-fixed = {{v1 = 0.0, v2 = 0.0}}
-t0 = 0.0
-
-[output]
-path = "results/bench_basin.h5"
-"""
 
 STABILITY_SCENE = """\
 # figure 14(c)-style basin stability: Duffing, phi = 5.28, d = 10.5, k_c = 8, c_c = 10
@@ -119,38 +95,6 @@ REFERENCE = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
 
 
 # ----------------------------------------------------------------------------- helpers
-
-def load() -> str:
-    try:
-        a, b, c = os.getloadavg()
-        return f"{a:.2f} {b:.2f} {c:.2f}"
-    except OSError:
-        return "n/a"
-
-
-def machine() -> str:
-    import numba
-    import scipy
-
-    import softimpact_cli
-
-    si = getattr(softimpact_cli, "__version__", "?")
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return (f"{cpu}, {os.cpu_count()} cores (shared machine: other processes may run), "
-            f"Python {platform.python_version()}, numpy {np.__version__}, numba "
-            f"{numba.__version__}, scipy {scipy.__version__}, softimpact_cli {si}")
-
-
-def scene_at(resolution: int):
-    return parse_scene(BASIN_SCENE.format(n=resolution), "<bench_basin>")
-
 
 def labels_of(ds) -> tuple[np.ndarray, tuple[str, ...]]:
     names = tuple(str(x) for x in ds["combination_name"].values) \
@@ -286,34 +230,14 @@ def reference_labels(scene, catalogues, names, states) -> tuple[list[str], float
     """The tight reference, labelled exactly as a sweep labels (run_chunk), on 2 workers."""
     from dataclasses import replace
 
-    ctx = SweepContext(
-        model=scene.system.model, bodies=scene.system.bodies, values=dict(scene.values),
-        integrator=replace(scene.integrator, **REFERENCE), grid=scene.grid,
-        states=np.asarray(states), t0=np.zeros(len(states)), catalogues=catalogues,
-        names=names, label_tol=scene.analysis.label_tol)
-    size = max(1, -(-len(states) // (4 * WORKERS)))
-    chunks = [(i, s, min(s + size, len(states))) for i, s in enumerate(range(0, len(states),
-                                                                          size))]
-    t = time.perf_counter()
-    codes = np.empty(len(states), dtype=np.int64)
-    for index, result in executors.LocalExecutor(WORKERS).run(ctx, chunks):
-        start = chunks[index][1]
-        codes[start:start + len(result["label"])] = result["label"]
-    return [name_of(c, names) for c in codes], time.perf_counter() - t
+    return label_states(scene, catalogues, names, states, replace(scene.integrator,
+                                                                  **REFERENCE))
 
 
 def agreement(got: list[str], ref: list[str]) -> tuple[int, int, str]:
     same = sum(a == b for a, b in zip(got, ref, strict=True))
     diffs = Counter(f"{b} -> {a}" for a, b in zip(got, ref, strict=True) if a != b)
     return same, len(ref), "; ".join(f"{k} x{v}" for k, v in diffs.most_common(4))
-
-
-def fmt_time(s: float) -> str:
-    if s < 120:
-        return f"{s:.1f} s"
-    if s < 7200:
-        return f"{s / 60:.1f} min"
-    return f"{s / 3600:.1f} h"
 
 
 @contextmanager

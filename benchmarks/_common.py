@@ -1,0 +1,139 @@
+"""Helpers shared by the benchmark scripts: the machine line, the load average, the figure
+6(d) basin scene, and labelling a list of initial states exactly as a sweep labels them.
+
+Not part of the package: benchmarks measure, they are not tests.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from softimpact_cli.config import IntegratorSettings, parse_scene  # noqa: E402
+from softimpact_cli.labels import name_of  # noqa: E402
+from softimpact_cli.sweep import executors  # noqa: E402
+from softimpact_cli.sweep.chunks import SweepContext  # noqa: E402
+
+WORKERS = 2  # the development machine has 2 cores
+
+BASIN_SCENE = """\
+# figure 6(d): as configs/demo_basins.toml, at the benchmark's resolution
+[system]
+model = "duffing"
+
+[coupling]
+d = 6.0
+phi = 0.0
+k_c = 8.0
+c_c = 10.0
+
+[analysis]
+kind = "basins"
+
+[initial_conditions]
+kind = "plane"
+axes = ["x1", "x2"]
+ranges = [[-12.0, 12.0], [-12.0, 12.0]]
+resolution = [{n}, {n}]
+fixed = {{v1 = 0.0, v2 = 0.0}}
+t0 = 0.0
+
+[output]
+path = "results/bench_basin.h5"
+"""
+
+
+def load() -> str:
+    """The 1, 5 and 15 minute load averages, as text."""
+    try:
+        a, b, c = os.getloadavg()
+        return f"{a:.2f} {b:.2f} {c:.2f}"
+    except OSError:
+        return "n/a"
+
+
+def machine() -> str:
+    """CPU, core count and the versions that matter for timings."""
+    import numba
+    import scipy
+
+    import softimpact_cli
+
+    si = getattr(softimpact_cli, "__version__", "?")
+    cpu = platform.processor() or platform.machine()
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return (f"{cpu}, {os.cpu_count()} cores (shared machine: other processes may run), "
+            f"Python {platform.python_version()}, numpy {np.__version__}, numba "
+            f"{numba.__version__}, scipy {scipy.__version__}, softimpact_cli {si}")
+
+
+def code_version() -> str:
+    """The git commit of the package measured, and whether its sources differ from it."""
+    def git(*args: str) -> str:
+        return subprocess.run(["git", "-C", str(ROOT), *args], capture_output=True, text=True,
+                              check=True).stdout.strip()
+    try:
+        head = git("rev-parse", "--short", "HEAD")
+        dirty = git("status", "--porcelain", "--", "softimpact_cli")
+    except (OSError, subprocess.CalledProcessError):
+        return "not a git checkout"
+    return f"commit {head}" + (" with uncommitted changes in softimpact_cli" if dirty else "")
+
+
+def fmt_time(s: float) -> str:
+    """Seconds as '12.3 s', '4.5 min' or '1.2 h'."""
+    if s < 120:
+        return f"{s:.1f} s"
+    if s < 7200:
+        return f"{s / 60:.1f} min"
+    return f"{s / 3600:.1f} h"
+
+
+def scene_at(resolution: int):
+    """The figure 6(d) basin scene on a ``resolution`` x ``resolution`` grid."""
+    return parse_scene(BASIN_SCENE.format(n=resolution), "<bench_basin>")
+
+
+def label_states(scene, catalogues: dict, names: tuple[str, ...], states,
+                 integrator: IntegratorSettings, workers: int = WORKERS,
+                 chunks_per_worker: int = 4) -> tuple[list[str], float]:
+    """Label ``states`` ((n, 4) array, imposed at t0 = 0) at the scene's parameter point
+    with ``integrator``, exactly as a sweep labels (``sweep.chunks.run_chunk`` on a local
+    pool of ``workers``). Returns (label names in input order, wall time in s)."""
+    states = np.asarray(states, dtype=float)
+    ctx = SweepContext(
+        model=scene.system.model, bodies=scene.system.bodies, values=dict(scene.values),
+        integrator=integrator, grid=scene.grid, states=states, t0=np.zeros(len(states)),
+        catalogues=catalogues, names=names, label_tol=scene.analysis.label_tol)
+    return label_context(ctx, workers, chunks_per_worker)
+
+
+def label_context(ctx: SweepContext, workers: int = WORKERS, chunks_per_worker: int = 4
+                  ) -> tuple[list[str], float]:
+    """Run every trajectory of ``ctx`` (all grid points times all states) through
+    ``run_chunk`` on a local pool; (label names in flat order, wall time in s)."""
+    n = ctx.grid.size * ctx.states.shape[0]
+    size = max(1, -(-n // (chunks_per_worker * workers)))
+    chunks = [(i, s, min(s + size, n)) for i, s in enumerate(range(0, n, size))]
+    t = time.perf_counter()
+    codes = np.empty(n, dtype=np.int64)
+    for index, result in executors.LocalExecutor(workers).run(ctx, chunks):
+        start = chunks[index][1]
+        codes[start:start + len(result["label"])] = result["label"]
+    return [name_of(c, ctx.names) for c in codes], time.perf_counter() - t
