@@ -17,8 +17,15 @@ from .kernels import METHODS, layout, orbit
 from .kernels.status import outcome
 from .systems import Surfaces, System
 
+# istate[:layout.N_COUNTERS]; "stiff_steps" are the Rodas4 steps (the others explicit),
+# "method_switches" the changes of method within `auto`
 COUNTER_NAMES = ("mode", "steps", "rejected_steps", "rhs_evaluations", "switches", "contacts",
-                 "samples")
+                 "samples", "stiff_steps", "method_switches")
+
+
+def counter_dict(counters: np.ndarray) -> dict[str, int]:
+    """The kernels' istate as {name: value} (its tail is auto's running state, not counted)."""
+    return dict(zip(COUNTER_NAMES, map(int, counters[: layout.N_COUNTERS]), strict=True))
 
 
 @dataclass(frozen=True)
@@ -149,7 +156,7 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
     return Classification(
         status=int(status), period=int(q), periods_used=int(n_used),
         orbit=orbit_pts[:q].copy(), contacts=int(contacts), max_penetration=float(max_g),
-        counters=dict(zip(COUNTER_NAMES, map(int, counters), strict=True)),
+        counters=counter_dict(counters),
         captured=int(captured),
     )
 
@@ -199,4 +206,4 @@ def record_trajectory(problem: Problem, state, t0: float, periods: int,
         A, b, rel, contact, problem.options(dt, float(t0)), capacity,
     )
     return Trajectory(int(status), st[:n], sy[:n], sec_t, sec_y, contacts, max_g,
-                      dict(zip(COUNTER_NAMES, map(int, counters), strict=True)))
+                      counter_dict(counters))

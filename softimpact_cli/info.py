@@ -28,6 +28,13 @@ def describe(ds) -> dict:
     """Summary of a result dataset: analysis, outcome, timings, provenance."""
     out = {k: _plain(ds.attrs[k]) for k in SUMMARY_KEYS if k in ds.attrs}
     out.update({k: _plain(v) for k, v in ds.attrs.items() if k.startswith("check_")})
+    steps = {phase: {"explicit": int(ds.attrs[f"{phase}_steps"])
+                     - int(ds.attrs[f"{phase}_stiff_steps"]),
+                     "stiff": int(ds.attrs[f"{phase}_stiff_steps"]),
+                     "method_switches": int(ds.attrs[f"{phase}_method_switches"])}
+             for phase in ("record", "classify") if f"{phase}_stiff_steps" in ds.attrs}
+    if steps:  # a trajectory: steps of the explicit pair and of Rodas4 ('auto' mixes them)
+        out["steps_by_method"] = steps
     if "orbit" in ds:
         out["orbit"] = _plain(ds["orbit"].values)
         out["variables"] = [str(v) for v in ds["variable"].values]

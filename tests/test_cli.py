@@ -151,3 +151,54 @@ def test_library_run_imports_neither_click_nor_matplotlib(tmp_path):
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           cwd=Path(__file__).parent)
     assert proc.returncode == 0, proc.stderr
+
+
+# ------------------------------------------------------------------ stiff stops (issue 7)
+
+STIFF_SCENE = """
+[system]
+model = "duffing"
+[coupling]
+d = 1.0
+phi = "pi"
+k_c = 1e6
+c_c = {c_c}
+[integrator]
+method = "{method}"
+max_periods = 200
+[analysis]
+kind = "trajectory"
+state = [2.0, 0.0, -2.0, 0.0]
+periods = 3
+samples_per_period = 16
+"""
+
+
+def test_stiff_stop_rk4_warns_and_diverges_auto_converges(tmp_path):
+    """k_c = 1e6 (Duffing pair, phi = pi, d = 1): RK4 at T/1440 is warned about, then
+    reports diverged; --strict refuses to start; the default method converges, and info
+    says how many steps each of its methods took."""
+    from softimpact_cli.info import describe  # what `softimpact info` prints
+
+    scene = tmp_path / "rk4.toml"
+    scene.write_text(STIFF_SCENE.format(c_c=1e3, method="rk4"))
+    out = tmp_path / "rk4.h5"
+    proc = run_cli("sweep", str(scene), "-o", str(out))
+    assert proc.returncode == 0, proc.stderr
+    assert "warning" in proc.stderr and "method 'stiff'" in proc.stderr
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["outcome"] == "diverged"
+    strict = tmp_path / "strict.h5"
+    _assert_clean_error(run_cli("sweep", str(scene), "-o", str(strict), "--strict"),
+                        "rk4.toml", "steps_per_period")
+    assert not strict.exists()
+    scene = tmp_path / "auto.toml"
+    scene.write_text(STIFF_SCENE.format(c_c=1e4, method="auto"))  # stability bound in contact
+    out = tmp_path / "auto.h5"
+    proc = run_cli("sweep", str(scene), "-o", str(out))
+    assert proc.returncode == 0 and "warning" not in proc.stderr, proc.stderr
+    with xr.open_dataset(out) as ds:
+        info = describe(ds)
+    assert info["outcome"] == "converged" and info["integrator_resolved_method"] == "auto"
+    steps = info["steps_by_method"]["classify"]
+    assert steps["explicit"] > 0 and steps["stiff"] > 0 and steps["method_switches"] >= 2

@@ -57,9 +57,9 @@ class IntegratorSettings:
 
     @property
     def resolved_method(self) -> str:
-        """The kernel method the run uses ('auto' picks the adaptive explicit pair; 'stiff'
-        is the L-stable Rodas4)."""
-        return {"auto": "dopri5", "stiff": "rodas4"}.get(self.method, self.method)
+        """The kernel method the run uses ('stiff' is the L-stable Rodas4; 'auto' runs the
+        adaptive explicit pair and switches to Rodas4 where its step is stability bound)."""
+        return {"stiff": "rodas4"}.get(self.method, self.method)
 
 
 @dataclass(frozen=True)

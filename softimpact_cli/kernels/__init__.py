@@ -8,11 +8,12 @@ kernels take the method as a first-class function:
             sample_t, sample_y) -> status
 """
 
-from . import common, dense, dopri5, orbit, rk4, rosenbrock, switching
+from . import auto, common, dense, dopri5, orbit, rk4, rosenbrock, switching
 from .numba_cache import stabilise
 
-for _module in (common, dense, dopri5, orbit, rk4, rosenbrock, switching):
+for _module in (auto, common, dense, dopri5, orbit, rk4, rosenbrock, switching):
     stabilise(_module)
 
-# method name -> module (each has ``advance``, ``ORDER`` and its tableau)
-METHODS = {"rk4": rk4, "dopri5": dopri5, "rodas4": rosenbrock}
+# method name -> module (each has ``advance`` and ``ORDER``; "auto" switches between
+# dopri5 and rodas4 per step and per contact mode)
+METHODS = {"rk4": rk4, "dopri5": dopri5, "rodas4": rosenbrock, "auto": auto}

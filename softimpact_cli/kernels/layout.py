@@ -26,7 +26,16 @@ N_RHS = 3
 N_SWITCHES = 4
 N_CONTACTS = 5
 N_SAMPLES = 6
-N_ISTATE = 7
+N_STIFF_STEPS = 7  # accepted steps of the stiff method (rodas4, alone or inside auto)
+N_METHOD_SWITCHES = 8  # auto: changes between the explicit and the stiff method
+N_COUNTERS = 9  # istate[:N_COUNTERS] are what engine.COUNTER_NAMES names (mode, counters)
+# auto's running state (kernels/auto.py), carried across calls like the mode
+AUTO_STIFF = 9  # 1 while the stiff method runs
+AUTO_STIFF_MODES = 10  # bit m set: a phase in mode m starts with the stiff method
+AUTO_HITS = 11  # Hairer's stiffness test: recent steps that looked stability bound
+AUTO_CALM = 12  # ... and steps in a row that did not
+AUTO_COOLDOWN = 13  # stiffness tests still to skip after a return to the explicit method
+N_ISTATE = 14
 
 # fstate
 H = 0  # the step the adaptive controller proposes next

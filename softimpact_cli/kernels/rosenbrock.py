@@ -60,6 +60,7 @@ from .layout import (
     N_REJECTED,
     N_RHS,
     N_STEPS,
+    N_STIFF_STEPS,
     RTOL,
     YNEW,
     H,
@@ -437,6 +438,7 @@ def _advance(rhs, jac, p, y, t, t_end, A_s, b_s, relevance, contact, opts, istat
         need_first = True  # Rodas4 is not FSAL: f, J and f_t at the new point
         steps += 1
         istate[N_STEPS] += 1
+        istate[N_STIFF_STEPS] += 1
         if out_of_bounds(y, opts[BOUND]):
             fstate[H] = h_next
             return DIVERGED
