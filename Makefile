@@ -109,6 +109,17 @@ $(BASIN_FIGS): $(STAMP)
 
 .PHONY: figures map-d-phi fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
+# Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
+# survives, verified by basin stability; a few minutes each on 2 cores.
+DESIGNS := design-duffing design-bilinear
+designs: $(DESIGNS)
+design-duffing: configs/design_duffing.toml
+design-bilinear: configs/design_bilinear.toml
+$(DESIGNS): $(STAMP)
+	$(SI) design $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
+	$(SI) plot design results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
+.PHONY: designs $(DESIGNS)
+
 # Speed, side by side in one run (figure 6(d) basin): softimpact vs the study's method vs
 # a scipy loop; plus basin-stability wall time and a profile. RES=200 for the full grid.
 RES ?= 100

@@ -140,6 +140,11 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
         if check_n:
             _store_check(sc, out, check_n)
         return
+    if sc.analysis.kind == "design":
+        if resume:
+            raise ConfigError(f"{scene}: --resume is for sweeps; a design reruns whole")
+        _run_design(sc, out, overwrite, workers, scheduler, quiet)
+        return
     if resume:
         raise ConfigError(f"{scene}: --resume is for sweeps (kind basins or stability)")
     if out.exists() and not overwrite:
@@ -153,6 +158,53 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     click.echo(f"{sc.analysis.kind}: {ds.attrs.get('outcome', 'done')}"
                + (f", period {ds.attrs['period']}" if ds.attrs.get("period") else "")
                + f" ({ds.attrs['wall_s']:.2f} s) -> {out}")
+
+
+def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool) -> None:
+    """Run a design scene and write its result (shared by ``design`` and ``sweep``)."""
+    from .info import format_design
+    from .store import write_result
+    from .sweep.design import run_design
+
+    if out.exists() and not overwrite:
+        raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
+    ds = run_design(sc, workers=workers, scheduler=scheduler,
+                    echo=(lambda s: None) if quiet else (lambda s: click.echo(s, err=True)),
+                    progress=None if quiet else _progress_bar)
+    write_result(ds, out)
+    click.echo(format_design(ds))
+    click.echo(f"design: {ds.attrs['wall_s']:.1f} s -> {out}")
+
+
+@main.command()
+@click.argument("scene", type=click.Path(dir_okay=False))
+@click.option("--target", default=None, help="Solution to keep, e.g. 'L1^1 R1-0^1' "
+              "(overrides [analysis] target).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="Result file (overrides [output] path).")
+@click.option("--overwrite", is_flag=True, help="Replace an existing result file.")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Local worker processes (default: all cores).")
+@click.option("--scheduler", callback=_scheduler, default=None,
+              help="Dask scheduler: tcp://HOST:PORT, or local:N to start a LocalCluster.")
+@click.option("-q", "--quiet", is_flag=True, help="No stages, no progress bar.")
+@click.option("--quick", is_flag=True, help="At most 100 samples (previews and CI).")
+@_user_errors
+def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
+    """Choose (d, phi, k_c, c_c) so that only the target solution survives (design SCENE)."""
+    from .config import quick as quick_scene
+    from .config.design import with_target
+
+    sc = load_scene(scene)
+    if sc.analysis.kind != "design":
+        raise ConfigError(f"{scene}: [analysis] kind: must be \"design\" for this command, "
+                          f"got {sc.analysis.kind!r}")
+    sc = with_target(sc, target) if target is not None else sc
+    sc = quick_scene(sc) if quick else sc
+    out = Path(output) if output else sc.output
+    check_writable(out, scene if not output else "command line",
+                   "-o/--output" if output else "[output] path")
+    _run_design(sc, out, overwrite, workers, scheduler, quiet)
 
 
 def _store_check(scene, out: Path, sample: int) -> None:
@@ -312,6 +364,19 @@ def plot_map_cmd(result, output):
     _draw(result, output, "map", lambda ds: plot_map(ds, output), complete=True)
 
 
+@plot.command("design")
+@click.argument("result", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Figure file (.png, .pdf, .svg).")
+@_user_errors
+def plot_design_cmd(result, output):
+    """The (d, phi) plane with the target-only region, the pick and runners-up, beside
+    the basin stability at the pick and under perturbations."""
+    from .plot.design import plot_design
+
+    _draw(result, output, "design", lambda ds: plot_design(ds, output))
+
+
 @plot.command("catalogue")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
@@ -366,6 +431,12 @@ def info(result, as_json, compare):
         click.echo(json.dumps(summary, indent=2))
         return
     scene = summary.pop("scene", "")
+    if ds.attrs.get("analysis") == "design":
+        from .info import format_design
+
+        click.echo(format_design(ds))
+        summary = {k: v for k, v in summary.items()
+                   if k not in ("target", "best", "runners_up", "reference", "robustness")}
     points = summary.pop("points", None)
     for key, value in summary.items():
         click.echo(f"{key:28s} {value}")

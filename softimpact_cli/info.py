@@ -54,6 +54,8 @@ def describe(ds) -> dict:
             for i, name in enumerate(ds["combination_label"].values)}
     if ds.attrs.get("analysis") in ("basins", "stability", "map"):
         out.update(sweep_summary(ds))
+    if ds.attrs.get("analysis") == "design":
+        out.update(design_summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}
 
@@ -212,3 +214,91 @@ def compare_shares(plane, stability) -> list[dict]:
                        for n in names},
         })
     return rows
+
+
+# ------------------------------------------------------------------ design results
+
+def _finite(value):
+    """JSON-safe: NaN and infinities become None, recursively."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(v) for v in value]
+    value = _plain(value)
+    return None if isinstance(value, float) and not np.isfinite(value) else value
+
+
+def design_point(ds, i: int) -> dict:
+    """One evaluated point of a design: parameters, target and impacting shares with 95%
+    Wilson intervals, score, margins, and the target's existence and multipliers there."""
+    target = str(ds.attrs["target"])
+    group = [str(g) for g in ds["group"].values]
+    share, lo, hi = (ds[k].values[i] for k in ("share", "ci_low", "ci_high"))
+    t, m = group.index(target), group.index("impacting (all)")
+    exists = int(ds["target_exists"].values[i])
+    mult = ds["multiplier_re"].values[i] + 1j * ds["multiplier_im"].values[i]
+    return _finite({
+        **{a: float(ds[f"point_{a}"].values[i]) for a in ("d", "phi", "k_c", "c_c")},
+        "n": int(ds["n_samples"].values[i]),
+        "share": float(share[t]), "ci95": [float(lo[t]), float(hi[t])],
+        "impacting_share": float(share[m]), "impacting_ci95": [float(lo[m]), float(hi[m])],
+        "score": float(ds["score"].values[i]),
+        "margin": {k: float(ds[f"margin_{k}"].values[i])
+                   for k in ("relative", "d_to_target", "d_to_boundary", "phi_to_boundary")},
+        "target_exists": None if exists < 0 else bool(exists),
+        "multipliers": [[float(z.real), float(z.imag)] for z in mult] if exists == 1 else None,
+        "shares": {g: float(share[j]) for j, g in enumerate(group) if share[j] > 0},
+    })
+
+
+def design_summary(ds) -> dict:
+    """The pick, the runners-up, the reference and the perturbed points of a design."""
+    role = [str(r) for r in ds["role"].values]
+    rank = ds["rank"].values
+    runners = sorted((i for i, r in enumerate(role) if r == "runner-up"), key=lambda i: rank[i])
+    return {
+        "target": str(ds.attrs["target"]),
+        "best": design_point(ds, role.index("best")),
+        "runners_up": [design_point(ds, i) for i in runners],
+        "reference": design_point(ds, role.index("reference")) if "reference" in role
+        else None,
+        "robustness": [{"parameter": str(ds["perturbed_axis"].values[i]),
+                        "step": int(ds["perturbed_step"].values[i]), **design_point(ds, i)}
+                       for i, r in enumerate(role) if r == "perturbed"],
+        "screened": sum(r in ("best", "runner-up", "screened") for r in role),
+        "screen_n": int(ds.attrs["screen_n"]), "robust_n": int(ds.attrs["robust_n"]),
+    }
+
+
+def format_design(ds) -> str:
+    """A plain-text table of a design result."""
+    s = design_summary(ds)
+    head = (f"design for {s['target']}: {s['screened']} candidates screened on "
+            f"{s['screen_n']} samples; shares with 95% Wilson intervals")
+    lines = [head, f"{'':10s} {'d':>8s} {'phi':>8s} {'k_c':>7s} {'c_c':>7s} {'n':>5s} "
+                   f"{'target share [95%]':>24s} {'impacting':>9s} {'margin':>7s} "
+                   f"{'d-d_crit':>8s}"]
+
+    def row(name: str, p: dict) -> str:
+        ci = p["ci95"]
+        return (f"{name:10s} {p['d']:8.4f} {p['phi']:8.4f} {p['k_c']:7.3f} {p['c_c']:7.3f} "
+                f"{p['n']:5d} {p['share']:7.3f} [{ci[0]:.3f}, {ci[1]:.3f}] "
+                f"{p['impacting_share']:9.3f} {p['margin']['relative']:7.3f} "
+                f"{p['margin']['d_to_target']:8.3f}")
+
+    lines.append(row("best", s["best"]))
+    lines += [row(f"runner-up{k + 1}", p) for k, p in enumerate(s["runners_up"])]
+    if s["reference"]:
+        lines.append(row("reference", s["reference"]))
+    if s["best"]["multipliers"]:
+        mods = ", ".join(f"{abs(complex(*z)):.4f}" for z in s["best"]["multipliers"])
+        lines.append(f"target's Floquet multipliers at the pick: |mu| = {mods}")
+    lines.append(f"robustness ({s['robust_n']} samples per point): target share when one "
+                 "parameter moves")
+    for p in s["robustness"]:
+        exists = "exists" if p["target_exists"] else "DESTROYED"
+        lines.append(f"  {p['parameter']:>3s} {p['step']:+d} step: {p['parameter']} = "
+                     f"{p[p['parameter']]:.4f}  share {p['share']:.3f} "
+                     f"[{p['ci95'][0]:.3f}, {p['ci95'][1]:.3f}], impacting "
+                     f"{p['impacting_share']:.3f}, target {exists}")
+    return "\n".join(lines)

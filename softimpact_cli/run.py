@@ -42,6 +42,10 @@ def run_scene(scene: Scene, progress=None) -> xr.Dataset:
         ds = critical_distance_dataset(scene, progress)
     elif a.kind == "bifurcation":
         ds = bifurcation_result(scene, progress)
+    elif a.kind == "design":
+        from .sweep.design import run_design
+
+        ds = run_design(scene, progress=progress)
     else:  # config only admits known kinds
         raise AssertionError(f"unhandled analysis kind {a.kind!r}")
     wall = time.perf_counter() - t0

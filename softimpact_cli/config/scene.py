@@ -32,7 +32,7 @@ from .sweep import (
 )
 
 ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation",
-                  "map")
+                  "map", "design")
 SWEEP_KINDS = ("basins", "stability", "map")
 METHODS = ("auto", "rk4", "dopri5", "rodas4", "stiff")
 
@@ -214,7 +214,7 @@ def _read_state(sec: Section, key: str, system: System) -> tuple[float, ...]:
     return tuple(out)
 
 
-def _read_analysis(source: str, doc: dict, system: System, period: float):
+def _read_analysis(source: str, doc: dict, system: System, period: float, values=None):
     sec = Section(source, "analysis", doc.get("analysis", {}))
     kind = sec.choice("kind", "trajectory", ANALYSIS_KINDS)
     if kind == "trajectory":
@@ -276,6 +276,12 @@ def _read_analysis(source: str, doc: dict, system: System, period: float):
             except ValueError as exc:
                 raise sec.fail("branches", str(exc)) from None
         analysis = BifurcationAnalysis(kind, start, stop, step, tuple(raw))
+    elif kind == "design":
+        if system.bodies != 2:
+            raise sec.fail("kind", "a design needs a pair ([system] bodies = 2)")
+        from .design import read_design
+
+        analysis = read_design(sec, values, lambda axis, v: _check_axis(system, axis, v))
     elif kind in SWEEP_KINDS:
         analysis = SweepAnalysis(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
     sec.finish()
@@ -312,7 +318,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     _read_coupling(source, doc, system, values)
     integrator = _read_integrator(source, doc)
     period = 2.0 * math.pi / values["w"]
-    analysis = _read_analysis(source, doc, system, period)
+    analysis = _read_analysis(source, doc, system, period, values)
     output = _read_output(source, doc, Path("."))
     grid = initial = catalogue = None
     if analysis.kind == "bifurcation":
@@ -334,6 +340,23 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         from dataclasses import replace as _replace
 
         analysis = _replace(analysis, phis=phis)
+        catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
+    elif analysis.kind == "design":
+        if "grid" in doc:
+            raise ConfigError(f"{source}: [grid]: not used by kind 'design' (its search box "
+                              "is [analysis] bounds)")
+        if "initial_conditions" not in doc:
+            raise ConfigError(f"{source}: [initial_conditions]: is required for a design "
+                              "(kind = \"random\", box, n, seed: the basin-stability samples)")
+        ic_kind = doc["initial_conditions"].get("kind", "plane")
+        if ic_kind != "random":
+            raise ConfigError(f"{source}: [initial_conditions] kind: a design's basin "
+                              f"stability needs kind = \"random\", got {ic_kind!r}")
+        initial = read_initial_conditions(source, doc, system.state_names, period, False)
+        for key in ("screen_n", "robust_n"):
+            if (getattr(analysis, key) or 0) > initial.count:
+                raise ConfigError(f"{source}: [analysis] {key}: must be <= [initial_conditions]"
+                                  f" n = {initial.count}, got {getattr(analysis, key)}")
         catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
     elif analysis.kind in SWEEP_KINDS:
         grid = read_grid(source, doc, values, system.bodies, period,

@@ -1,0 +1,163 @@
+"""[analysis] kind = "design": the keys of a control-design scene, and the --target check.
+
+A design scene names the solution to keep (``target``), the search box (``bounds`` over
+d, phi, k_c, c_c) and the search budget; its basin-stability samples come from
+[initial_conditions] (kind = "random") and its labels from [catalogue], as for sweeps.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+
+from ..expressions import parse_multiple
+from .reader import ConfigError, Section
+
+DESIGN_AXES = ("d", "phi", "k_c", "c_c")
+
+
+@dataclass(frozen=True)
+class DesignAnalysis:
+    """[analysis] kind = "design" (see ``analysis.design`` for the method).
+
+    target : ASCII name of the non-impacting combination to keep (None: --target gives it)
+    bounds : {axis: (low, high)} over d, phi (rad), k_c, c_c; low == high fixes the axis
+    candidates : points screened; screen_n : samples per screened point (a prefix of the
+        [initial_conditions] samples); refine : best screened points rerun with all n
+    robust_n : samples per perturbed point (default: all n); perturbation : relative step
+        of d, k_c, c_c (phi: the step is perturbation * pi); perturbation_steps : steps on
+        each side; min_margin : smallest relative margin a candidate may have
+    phi_points : phases of the critical-distance grid over [0, 2 pi)
+    reference : a point to verify beside the pick with the same samples (or None)
+    seed : rotation of the candidate set (the samples' seed is in [initial_conditions])
+    """
+
+    kind: str
+    target: str | None
+    bounds: Mapping[str, tuple[float, float]]
+    candidates: int = 48
+    screen_n: int = 100
+    refine: int = 4
+    robust_n: int | None = None
+    perturbation: float = 0.02
+    perturbation_steps: int = 1
+    min_margin: float = 0.02
+    phi_points: int = 180
+    reference: Mapping[str, float] | None = None
+    seed: int = 0
+    label_tol: float = 1e-3
+
+
+def check_target(name: object, where: str) -> str:
+    """The target name if it names a non-impacting pair; ConfigError naming ``where``."""
+    from ..labels import parse_label
+
+    if not isinstance(name, str):
+        raise ConfigError(f"{where}: must be a name like 'L1^1 R1-0^1', got {name!r}")
+    try:
+        kind = parse_label(name).kind
+    except ValueError as exc:
+        raise ConfigError(f"{where}: {exc}") from None
+    if kind != "pair":
+        what = "an impacting solution" if kind == "impacting" else \
+            f"{'an' if kind[0] in 'aeiou' else 'a'} {kind} outcome"
+        if kind == "body":
+            what = "one body's attractor"
+        raise ConfigError(f"{where}: {name!r} is {what}; the target must be a non-impacting "
+                          "combination of the pair like 'L1^1 R1-0^1'")
+    return name
+
+
+def _pair(sec: Section, key: str, raw, check) -> tuple[float, float]:
+    ok = isinstance(raw, list) and len(raw) == 2
+    if ok:
+        try:
+            lo, hi = (parse_multiple(v, "pi", math.pi) if key.endswith("phi") else
+                      _number(v) for v in raw)
+        except ValueError:
+            ok = False
+    if not ok or not lo <= hi:
+        raise sec.fail(key, f"must be [low, high] with low <= high, got {raw!r}")
+    for v in (lo, hi):
+        problem = check(v)
+        if problem:
+            raise sec.fail(key, f"{problem}, got {raw!r}")
+    return lo, hi
+
+
+def _number(v) -> float:
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+        raise ValueError(v)
+    return float(v)
+
+
+def read_design(sec: Section, values: Mapping, check_axis) -> DesignAnalysis:
+    """The design keys of [analysis]; ``check_axis(axis, value)`` returns a problem or None."""
+    target = sec.raw("target", None)
+    if target is not None:
+        target = check_target(target, f"{sec.source}: [analysis] target")
+    raw = sec.raw("bounds", None)
+    if not isinstance(raw, dict) or not {"d", "phi"} <= set(raw):
+        raise sec.fail("bounds", "is required: a table {d = [lo, hi], phi = [lo, hi]} (k_c, "
+                                 "c_c optional: fixed at [coupling] when missing)")
+    for key in raw:
+        if key not in DESIGN_AXES:
+            raise sec.fail(f"bounds.{key}", f"unknown axis; allowed: {', '.join(DESIGN_AXES)}")
+    bounds = {a: _pair(sec, f"bounds.{a}", raw[a], lambda v, a=a: check_axis(a, v))
+              if a in raw else (float(values[a]), float(values[a])) for a in DESIGN_AXES}
+    if bounds["d"][0] <= 0:
+        raise sec.fail("bounds.d", f"must be above 0 (margins are relative to d), got "
+                                   f"{raw['d']!r}")
+    if bounds["phi"][1] - bounds["phi"][0] > 2 * math.pi + 1e-12:
+        raise sec.fail("bounds.phi", "spans more than 2 pi; phi is an angle")
+    reference = None
+    ref_raw = sec.raw("reference", None)
+    if ref_raw is not None:
+        if not isinstance(ref_raw, dict):
+            raise sec.fail("reference", f"must be a table like {{d = 5.0, phi = \"pi\"}}, got "
+                                        f"{ref_raw!r}")
+        reference = {}
+        for key in ref_raw:
+            if key not in DESIGN_AXES:
+                raise sec.fail(f"reference.{key}", f"unknown axis; allowed: "
+                                                   f"{', '.join(DESIGN_AXES)}")
+        for a in DESIGN_AXES:
+            v = ref_raw.get(a, values[a])
+            try:
+                v = parse_multiple(v, "pi", math.pi) if a == "phi" else _number(v)
+            except ValueError:
+                raise sec.fail(f"reference.{a}", f"must be a number, got {v!r}") from None
+            problem = check_axis(a, v)
+            if problem:
+                raise sec.fail(f"reference.{a}", f"{problem}, got {v!r}")
+            reference[a] = v
+    candidates = sec.integer("candidates", 48, 1, 100_000)
+    design = DesignAnalysis(
+        kind="design", target=target, bounds=bounds, candidates=candidates,
+        screen_n=sec.integer("screen_n", 100, 1),
+        refine=sec.integer("refine", min(4, candidates), 1, candidates),
+        robust_n=sec.integer("robust_n", 1, 1) if sec.has("robust_n") else None,
+        perturbation=sec.number("perturbation", 0.02,
+                                lambda v: None if 0 < v < 0.5 else "must be in (0, 0.5)"),
+        perturbation_steps=sec.integer("perturbation_steps", 1, 1, 10),
+        min_margin=sec.number("min_margin", 0.02,
+                              lambda v: None if 0 <= v < 0.5 else "must be in [0, 0.5)"),
+        phi_points=sec.integer("phi_points", 180, 8, 100_000),
+        reference=reference,
+        seed=sec.integer("seed", 0, 0),
+        label_tol=sec.number("label_tol", 1e-3, lambda v: None if v > 0 else "must be > 0"),
+    )
+    return design
+
+
+def with_target(scene, target: str):
+    """The scene with its design target replaced by ``target`` (from --target); the stored
+    scene text records the override, so its hash differs."""
+    if scene.analysis.kind != "design":
+        raise ConfigError(f"{scene.source}: --target is for design scenes; kind is "
+                          f"{scene.analysis.kind!r}")
+    name = check_target(target, "--target")
+    note = f"\n# --target {name!r}\n"
+    return replace(scene, analysis=replace(scene.analysis, target=name),
+                   text=scene.text + note)

@@ -1,0 +1,165 @@
+"""Design figure: the (d, phi) plane with the region where only the target survives, the
+critical-distance curves, the candidates, the pick and the runners-up; beside it the
+basin stability at the pick (and the reference), and the target's share when one
+parameter at a time is perturbed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..info import design_summary
+from ..labels import latex_of
+from . import parameter_text, pyplot
+from .dcrit import jumps
+from .palette import IMPACTING, colour_of
+
+TWO_PI = 2 * np.pi
+AXIS_TEX = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c"}
+
+
+def _tiled(phi: np.ndarray, values: np.ndarray, lo: float, hi: float, gaps: bool = True):
+    """A 2 pi-periodic curve unrolled over [lo, hi], with gaps at its jumps (``gaps``)."""
+    xs, ys = [], []
+    cut = jumps(values) + 1 if gaps else np.array([], dtype=int)
+    x = np.insert(phi, cut, np.nan)
+    y = np.insert(values, cut, np.nan)
+    for k in range(int(np.floor((lo - phi[-1]) / TWO_PI)), int(np.ceil(hi / TWO_PI)) + 1):
+        xs += [x + k * TWO_PI, [np.nan]]
+        ys += [y, [np.nan]]
+    return np.concatenate(xs), np.concatenate(ys)
+
+
+def _plane(ax, ds, s: dict) -> None:
+    phi = ds["dcrit_phi"].values
+    b_phi, b_d = ds.attrs["bounds_phi"], ds.attrs["bounds_d"]
+    pad_phi = max(0.08 * (b_phi[1] - b_phi[0]), 0.05)
+    pad_d = max(0.12 * (b_d[1] - b_d[0]), 0.05 * b_d[1])
+    x_lo, x_hi = b_phi[0] - pad_phi, b_phi[1] + pad_phi
+    y_lo, y_hi = max(b_d[0] - pad_d, 0.0), b_d[1] + pad_d
+    target = s["target"]
+    xs, low = _tiled(phi, ds["region_low"].values, x_lo, x_hi, gaps=False)
+    _, high = _tiled(phi, np.minimum(ds["region_high"].values, 1e6), x_lo, x_hi, gaps=False)
+    ok = np.isfinite(low) & np.isfinite(high) & (low < high)
+    ax.fill_between(xs, np.clip(low, y_lo, y_hi), np.clip(high, y_lo, y_hi), where=ok,
+                    color=colour_of(target), alpha=0.22, lw=0,
+                    label=f"only {latex_of(target)} survives")
+    for i, name in enumerate(str(n) for n in ds["dcrit_name"].values):
+        x, y = _tiled(phi, ds["critical_distance"].values[i], x_lo, x_hi)
+        ax.plot(x, y, color=colour_of(name), lw=2.4 if name == target else 1.1,
+                label=latex_of(name) + (" (target)" if name == target else ""))
+    ax.add_patch(_rectangle(b_phi, b_d))
+    role = [str(r) for r in ds["role"].values]
+    pts = {r: [i for i, x in enumerate(role) if x == r] for r in set(role)}
+    P = {a: ds[f"point_{a}"].values for a in ("d", "phi")}
+    sel = pts.get("screened", [])
+    ax.plot(P["phi"][sel], P["d"][sel], ".", color="0.35", ms=5, label="screened")
+    for k, p in enumerate(s["runners_up"]):
+        ax.plot(p["phi"], p["d"], "s", color="#ff7f0e", mec="k", ms=7,
+                label="runners-up" if k == 0 else None)
+        ax.annotate(str(k + 1), (p["phi"], p["d"]), textcoords="offset points",
+                    xytext=(5, 4), fontsize=8)
+    if s["reference"]:
+        r = s["reference"]
+        ax.plot(r["phi"], r["d"], "D", color="w", mec="k", ms=7, label="reference")
+    best = s["best"]
+    ax.plot(best["phi"], best["d"], "*", color="#d62728", mec="k", ms=16, label="pick")
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_ylim(y_lo, y_hi)
+    ax.set_xlabel(r"$\varphi$ (rad)")
+    ax.set_ylabel("$d$")
+    ax.set_title("critical distances; shaded: target alone; dashed: search bounds",
+                 fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0.0, -0.13), ncols=3,
+              frameon=False)
+
+
+def _rectangle(b_phi, b_d):
+    from matplotlib.patches import Rectangle
+
+    return Rectangle((b_phi[0], b_d[0]), b_phi[1] - b_phi[0], b_d[1] - b_d[0], fill=False,
+                     ls="--", lw=1.0, ec="0.3")
+
+
+def _bars(ax, s: dict) -> None:
+    shown = [("pick", s["best"], "#d62728")]
+    if s["reference"]:
+        shown.append(("reference", s["reference"], "0.55"))
+    names = list(dict.fromkeys([s["target"], "impacting (all)"] + [
+        g for _, p, _ in shown for g in p["shares"]
+        if g != "non-impacting (sum)" and not g.startswith("impacting P")]))
+    names.sort(key=lambda g: (g != s["target"], g == "impacting (all)", g))
+    width = 0.8 / len(shown)
+    x = np.arange(len(names))
+    for k, (what, p, colour) in enumerate(shown):
+        share = np.array([p["shares"].get(g, 0.0) for g in names])
+        ax.bar(x + (k - (len(shown) - 1) / 2) * width, share, width, color=colour,
+               alpha=0.85, label=f"{what}: n = {p['n']}")
+    # intervals of the two shares the design is about (95% Wilson)
+    for k, (_, p, _) in enumerate(shown):
+        for g, key in ((s["target"], "ci95"), ("impacting (all)", "impacting_ci95")):
+            if g in names:
+                xi = names.index(g) + (k - (len(shown) - 1) / 2) * width
+                v = p["share"] if key == "ci95" else p["impacting_share"]
+                ax.errorbar(xi, v, yerr=[[v - p[key][0]], [p[key][1] - v]], color="k",
+                            capsize=3, lw=1)
+                ax.annotate(f"{v:.3f}", (xi, p[key][1]), textcoords="offset points",
+                            xytext=(0, 3), ha="center", fontsize=7)
+    ax.set_xticks(x, [latex_of(g) if g != "impacting (all)" else "impacting\n(all)"
+                      for g in names], fontsize=8, rotation=20)
+    for tick, g in zip(ax.get_xticklabels(), names, strict=True):
+        tick.set_color(IMPACTING if g.startswith("impacting") else "k")
+    ax.set_ylim(0, 1.25)
+    ax.set_yticks(np.linspace(0, 1, 6))
+    ax.set_ylabel("basin stability")
+    ax.set_title("at the pick (95% Wilson intervals)", fontsize=9)
+    ax.legend(fontsize=7, loc="upper center", ncols=2, frameon=False)
+
+
+def _robustness(ax, s: dict, relative: float) -> None:
+    best = s["best"]
+    for j, axis in enumerate(("d", "phi", "k_c", "c_c")):
+        rows = sorted([p for p in s["robustness"] if p["parameter"] == axis],
+                      key=lambda p: p["step"])
+        rows = rows[: len(rows) // 2] + [{**best, "step": 0}] + rows[len(rows) // 2:] \
+            if rows else []
+        if not rows:
+            continue
+        steps = np.array([p["step"] for p in rows]) + (j - 1.5) * 0.06
+        share = np.array([p["share"] for p in rows])
+        err = np.array([[p["share"] - p["ci95"][0], p["ci95"][1] - p["share"]] for p in rows])
+        line = ax.errorbar(steps, share, yerr=err.T, marker="o", ms=4, capsize=2, lw=1,
+                           label=f"${AXIS_TEX[axis]}$")
+        gone = [k for k, p in enumerate(rows) if p["target_exists"] is False]
+        ax.plot(steps[gone], share[gone], "x", color=line[0].get_color(), ms=10, mew=2)
+    low = min([p["ci95"][0] for p in s["robustness"]] + [best["ci95"][0]])
+    ax.set_ylim(max(0.0, min(low - 0.03, 0.9)), 1.02)
+    unit = f"{100 * relative:g}% of the value ($\\varphi$: of $\\pi$)"
+    ax.set_xlabel(f"perturbation steps ({unit})", fontsize=8)
+    ax.set_ylabel("target's basin stability")
+    ax.set_title("one parameter at a time (x: target destroyed)", fontsize=9)
+    ax.legend(fontsize=7, loc="lower left")
+
+
+def plot_design(ds, out: str | Path) -> Path:
+    plt = pyplot()
+    s = design_summary(ds)
+    fig, axs = plt.subplots(1, 3, figsize=(15.5, 5.6), constrained_layout=True,
+                            gridspec_kw={"width_ratios": [1.5, 1.0, 1.0]})
+    _plane(axs[0], ds, s)
+    _bars(axs[1], s)
+    _robustness(axs[2], s, float(ds.attrs["perturbation"]))
+    b = s["best"]
+    t0 = "random $t_0$" if ds.attrs.get("t0_mode") == "random" else \
+        f"$t_0 = {float(ds.attrs.get('t0', 0.0)):.4g}$"
+    fig.suptitle(
+        f"{ds.attrs.get('model')} pair: design for {latex_of(s['target'])}; pick d = "
+        f"{b['d']:.4g}, $\\varphi$ = {b['phi']:.4g}, $k_c$ = {b['k_c']:.4g}, $c_c$ = "
+        f"{b['c_c']:.4g}; samples in {ds.attrs.get('sample_box', '?')}, {t0}\n"
+        f"{parameter_text(ds, exclude=('d', 'phi', 'k_c', 'c_c', 'law'))}", fontsize=9)
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=130)
+    plt.close(fig)
+    return out
