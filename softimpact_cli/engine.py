@@ -8,12 +8,13 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from functools import cache
 from typing import Any
 
 import numpy as np
 
 from .config import IntegratorSettings
-from .kernels import METHODS, layout, orbit
+from .kernels import METHODS, cells, layout, orbit
 from .kernels.status import outcome
 from .systems import Surfaces, System
 
@@ -111,6 +112,23 @@ def no_known_orbits(dim: int) -> KnownOrbits:
     return KnownOrbits.from_orbits([], [], 0.0, 1, dim)
 
 
+class RecurrenceCells:
+    """The section cells earlier trajectories of one parameter point labelled
+    (``kernels.cells``): boxes of side ``size``; a trajectory takes a label after ``hits``
+    consecutive periods in cells of that label. Start a new one per parameter point."""
+
+    def __init__(self, size: float, hits: int, max_periods: int):
+        self.size = float(size)
+        self.hits = int(hits)
+        self.table = cells.new_cells()
+        self.visited = np.empty(max_periods + 1, dtype=np.int64)  # filled by each classify
+
+    def remember(self, classification: Classification, code: int) -> None:
+        """Mark the cells the last classified trajectory visited with its label code."""
+        n = min(classification.periods_used + 1, self.visited.size)
+        cells.remember_cells(self.table, self.visited, n, code)
+
+
 @dataclass(frozen=True)
 class Classification:
     """Outcome of one trajectory on the stroboscopic section.
@@ -128,6 +146,7 @@ class Classification:
     max_penetration: float
     counters: dict[str, int]
     captured: int = -1  # index of the known orbit that captured it (-1: converged by itself)
+    cell_code: int = cells.MIXED  # label code taken from recurrence cells (orbit unknown)
 
     @property
     def outcome(self) -> str:
@@ -138,26 +157,38 @@ class Classification:
         return self.status == 0 and self.max_penetration >= 0.0
 
 
+@cache
+def _no_cells() -> RecurrenceCells:
+    """An empty, disabled table: the kernel keeps one signature with or without cells."""
+    return RecurrenceCells(0.0, 1, 0)
+
+
 def classify_state(problem: Problem, state, t0: float = 0.0,
-                   known: KnownOrbits | None = None) -> Classification:
+                   known: KnownOrbits | None = None,
+                   recurrence: RecurrenceCells | None = None) -> Classification:
     """Integrate from ``state`` imposed at time ``t0`` until classified (or captured by
-    one of the ``known`` stable orbits of this parameter point)."""
+    one of the ``known`` stable orbits of this parameter point, or by the ``recurrence``
+    cells earlier trajectories of this point labelled)."""
     y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
     s = problem.integrator
     if known is None:
         known = no_known_orbits(y0.shape[0])
+    if recurrence is None:
+        recurrence = _no_cells()
     A, b, rel, contact = problem.kernel_args()
-    status, q, n_used, orbit_pts, contacts, max_g, counters, captured = orbit.classify_near(
+    (status, q, n_used, orbit_pts, contacts, max_g, counters, captured,
+     cell_code) = orbit.classify_near(
         problem.advance, problem.system.rhs, problem.params, y0, float(t0), problem.period,
         A, b, rel, contact, problem.options(), s.max_periods, s.max_orbit_period,
         s.convergence_tol, known.points, known.periods, known.max_g, known.capture_tol,
-        known.capture_hits,
+        known.capture_hits, recurrence.table, recurrence.size, recurrence.hits,
+        recurrence.visited,
     )
     return Classification(
         status=int(status), period=int(q), periods_used=int(n_used),
         orbit=orbit_pts[:q].copy(), contacts=int(contacts), max_penetration=float(max_g),
         counters=counter_dict(counters),
-        captured=int(captured),
+        captured=int(captured), cell_code=int(cell_code),
     )
 
 

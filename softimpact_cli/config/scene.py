@@ -51,6 +51,8 @@ class IntegratorSettings:
     convergence_tol: float = 1e-6
     capture_tol: float = 1e-2
     capture_hits: int = 3
+    cell_size: float = 0.0
+    cell_hits: int = 8
     divergence_bound: float = 1e6
     max_steps_per_period: int = 200_000
     max_switches_per_period: int = 10_000
@@ -191,6 +193,9 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
         capture_tol=sec.number("capture_tol", d.capture_tol,
                                lambda v: None if 0 <= v <= 0.1 else "must be in [0, 0.1]"),
         capture_hits=sec.integer("capture_hits", d.capture_hits, 1, 1000),
+        cell_size=sec.number("cell_size", d.cell_size,
+                             lambda v: None if v >= 0 else "must be >= 0 (0: no cells)"),
+        cell_hits=sec.integer("cell_hits", d.cell_hits, 1, 1000),
         divergence_bound=sec.number("divergence_bound", d.divergence_bound, positive),
         max_steps_per_period=sec.integer("max_steps_per_period", d.max_steps_per_period, 10),
         max_switches_per_period=sec.integer("max_switches_per_period",

@@ -12,7 +12,8 @@ known orbit, point after point, within ``capture_tol`` (scaled like the converge
 for ``capture_hits`` consecutive periods without contact. Inside such a neighbourhood of a
 stable orbit the trajectory contracts onto it, so the label is the one full convergence
 would give, reached after about half the periods (the last ~1e-2 -> 1e-6 of the approach
-is skipped).
+is skipped). With recurrence cells (``kernels.cells``) it also stops when the section
+points land, period after period, in cells that earlier trajectories marked with one label.
 """
 
 from math import ceil
@@ -20,6 +21,7 @@ from math import ceil
 import numpy as np
 from numba import njit
 
+from .cells import MIXED, NO_CELL, cell_key, new_cells
 from .layout import MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
 from .status import CONVERGED, OK, UNRESOLVED
 from .switching import mode_of
@@ -103,17 +105,17 @@ def classify(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact, opts
              max_periods, max_orbit_period, tol):
     """``classify_near`` with no known orbits: stop when the section points repeat."""
     dim = y0.shape[0]
-    status, q, n, orbit, total, worst, istate, _ = classify_near(
+    status, q, n, orbit, total, worst, istate, _, _ = classify_near(
         advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact, opts, max_periods,
         max_orbit_period, tol, np.zeros((0, 1, dim)), np.zeros(0, dtype=np.int64),
-        np.zeros(0), 0.0, 1)
+        np.zeros(0), 0.0, 1, new_cells(), 0.0, 1, np.empty(0, dtype=np.int64))
     return status, q, n, orbit, total, worst, istate
 
 
 @njit(cache=True)
 def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact, opts,
                   max_periods, max_orbit_period, tol, known, known_q, known_max_g,
-                  capture_tol, capture_hits):
+                  capture_tol, capture_hits, cells, cell_size, cell_hits, visited):
     """Integrate from (t0, y0) until the section points repeat, or follow a known orbit,
     or the budget ends, or it fails.
 
@@ -122,6 +124,10 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
     the contact function; capture_tol, capture_hits : capture after this many consecutive
     periods, each within capture_tol * max(1, |y|) of the known orbit's next point and
     without contact (capture_tol = 0 disables capture).
+    cells : {cell key: label code} of earlier trajectories (``kernels.cells``); cell_size
+    (0 disables), cell_hits : take a cell label after this many consecutive periods in
+    cells of that label; visited : (max_periods + 1,) int64, receives the cell keys of
+    the section points in order (its length bounds what is recorded).
 
     Returns
     -------
@@ -135,6 +141,8 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
             (>= 0 means the orbit is in contact; -inf for systems without contact)
     counters : (N_ISTATE,) int64 array of the integrator's counters
     captured : int, index of the known orbit that captured the trajectory, else -1
+    cell_code : int, the label code taken from the cells (status CONVERGED, q = 0, orbit
+                unknown), else MIXED (-1); ``visited`` then holds n_used + 1 keys
     """
     dim = y0.shape[0]
     y = y0.copy()
@@ -152,8 +160,12 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
         status = advance(rhs, p, y, t, n0 * period, A_s, b_s, relevance, contact, opts,
                          istate, fstate, work, empty_t, empty_y)
         if status != OK:
-            return status, 0, 0, orbit, 0, -np.inf, istate, -1
+            return status, 0, 0, orbit, 0, -np.inf, istate, -1, MIXED
     hist[0] = y
+    use_cells = cell_size > 0.0 and visited.shape[0] > 0
+    run, run_code = 0, MIXED
+    if use_cells:
+        visited[0] = cell_key(y, cell_size)
     use_known = capture_tol > 0.0 and known.shape[0] > 0
     streak, last_k, last_j = 0, -1, -1
     for n in range(1, max_periods + 1):
@@ -165,11 +177,21 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
         status = advance(rhs, p, y, t_start, t_start + period, A_s, b_s, relevance, contact,
                          opts, istate, fstate, work, empty_t, empty_y)
         if status != OK:
-            return status, 0, n, orbit, 0, -np.inf, istate, -1
+            return status, 0, n, orbit, 0, -np.inf, istate, -1, MIXED
         k = n % depth
         hist[k] = y
         contacts[k] = istate[N_CONTACTS] - c_before
         max_g[k] = fstate[MAX_G]
+        if use_cells and n < visited.shape[0]:  # every visited key is written, whatever
+            key = cell_key(y, cell_size)        # classifies the trajectory below
+            visited[n] = key
+            code = cells.get(key, MIXED) if key != NO_CELL else MIXED
+            if code == MIXED:
+                run = 0
+            elif code == run_code:
+                run += 1
+            else:
+                run, run_code = 1, code
         if use_known:
             scale = 1.0
             for i in range(dim):
@@ -188,7 +210,9 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
                 q = known_q[hit_k]
                 for i in range(q):  # the known orbit, time order, ending at point hit_j
                     orbit[i] = known[hit_k, (hit_j - q + 1 + i) % q]
-                return CONVERGED, q, n, orbit, 0, known_max_g[hit_k], istate, hit_k
+                return CONVERGED, q, n, orbit, 0, known_max_g[hit_k], istate, hit_k, MIXED
+        if run >= cell_hits:
+            return CONVERGED, 0, n, orbit, 0, -np.inf, istate, -1, run_code
         q = _repeat_period(hist, n, depth, max_orbit_period, tol)
         if q > 0:
             total = 0
@@ -198,8 +222,8 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
                 orbit[i] = hist[kk]
                 total += contacts[kk]
                 worst = max(worst, max_g[kk])
-            return CONVERGED, q, n, orbit, total, worst, istate, -1
-    return UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate, -1
+            return CONVERGED, q, n, orbit, total, worst, istate, -1, MIXED
+    return UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate, -1, MIXED
 
 
 @njit(cache=True)

@@ -12,12 +12,15 @@ import numpy as np
 
 from ..analysis.catalogue import Catalogue, label_orbit
 from ..config import GRID_AXES, Grid, IntegratorSettings
-from ..engine import KnownOrbits, Problem, classify_state
+from ..engine import KnownOrbits, Problem, RecurrenceCells, classify_state
+from ..kernels.cells import MIXED
 from ..kernels.status import outcome
 from ..labels import DIVERGED_CODE, UNRESOLVED_CODE, code_of
 from ..systems import get_system
 
 CAPTURE_MARGIN = 10.0  # d - d_crit must exceed this many capture radii
+CAPTURED_BY_ORBIT = 1  # values of the "captured" field (0: the orbit's own repeat)
+CAPTURED_BY_CELLS = 2
 
 RESULT_FIELDS = {  # name -> dtype of the per-trajectory arrays a chunk returns
     "label": np.int32,
@@ -82,15 +85,20 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     """Classify and label flat indices [start, stop).
 
     Returns per-trajectory arrays (RESULT_FIELDS) and ``orbits``: for each (grid point,
-    label code) first seen in this chunk, (flat index, section points (q, dim)).
+    label code) first seen in this chunk, (flat index, section points (q, dim)). With
+    recurrence cells (``cell_size > 0``) each grid point of the chunk starts an empty
+    table, so a chunk's result depends only on its own index range.
     """
     n = stop - start
     out = {k: np.zeros(n, dtype=t) for k, t in RESULT_FIELDS.items()}
     orbits: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     system = get_system(ctx.model, ctx.bodies)
     n_ic = ctx.states.shape[0]
+    s = ctx.integrator
     problem = None
     known = None
+    cells = None
+    summary: dict[int, tuple[int, int, float]] = {}  # code -> (period, contacts, max_pen)
     current = -1
     catalogue: Catalogue | None = None
     for k in range(n):
@@ -98,25 +106,38 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
         point, ic = divmod(flat, n_ic)
         if point != current:
             values, grid_t0 = ctx.point_values(point)
-            problem = Problem(system, values, ctx.integrator)
+            problem = Problem(system, values, s)
             catalogue = ctx.catalogues[float(values.get("phi", 0.0))]
             known = ctx.known_orbits(values)
+            if s.cell_size > 0.0:
+                cells = RecurrenceCells(s.cell_size, s.cell_hits, s.max_periods)
+            summary = {}
             current = point
         t0 = grid_t0 if ctx.t0 is None else float(ctx.t0[ic])
-        cls = classify_state(problem, ctx.states[ic], t0, known)
-        if cls.status == 0:
+        cls = classify_state(problem, ctx.states[ic], t0, known, cells)
+        how = CAPTURED_BY_ORBIT if cls.captured >= 0 else 0
+        if cls.status == 0 and cls.cell_code != MIXED:
+            code = cls.cell_code
+            how = CAPTURED_BY_CELLS
+            period, contacts, max_pen = summary[code]
+        elif cls.status == 0:
             label = label_orbit(catalogue, cls.orbit, cls.impacting, ctx.label_tol)
             code = code_of(label, ctx.names)
             if (point, code) not in orbits:
                 orbits[(point, code)] = (flat, cls.orbit)
+            period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
+            summary.setdefault(code, (period, contacts, max_pen))
         else:
             code = UNRESOLVED_CODE if outcome(cls.status) == "unresolved" else DIVERGED_CODE
+            period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
+        if cells is not None and cls.status == 0:
+            cells.remember(cls, code)
         out["label"][k] = code
         out["status"][k] = cls.status
-        out["period"][k] = cls.period
+        out["period"][k] = period
         out["periods_used"][k] = cls.periods_used
-        out["contacts"][k] = cls.contacts
-        out["max_penetration"][k] = cls.max_penetration
-        out["captured"][k] = cls.captured >= 0
+        out["contacts"][k] = contacts
+        out["max_penetration"][k] = max_pen
+        out["captured"][k] = how
     out["orbits"] = orbits
     return out

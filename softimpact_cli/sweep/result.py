@@ -16,8 +16,8 @@ ATTRIBUTES = {
     "periods_used": ("forcing periods integrated before classification", "forcing periods"),
     "contacts": ("contact onsets on the final orbit", "1"),
     "max_penetration": ("max of x1 - x2 - d on the final orbit (>= 0: impacting)", "1"),
-    "captured": ("1: classified by capture near a known stable orbit, 0: by the repeat of "
-                 "its own section points", "1"),
+    "captured": ("how it was classified: 0 by the repeat of its own section points, 1 by "
+                 "capture near a known stable orbit, 2 by recurrence cells", "1"),
 }
 
 

@@ -1,0 +1,54 @@
+"""Recurrence cells: the labels earlier trajectories gave to boxes of the section.
+
+A cell is a box of side ``cell_size`` in the state space of the stroboscopic section (the
+idea of Attractors.jl's recurrences method). Every section point a classified trajectory
+visited marks its cell with that trajectory's label code; a cell that two trajectories
+with different labels visited is marked ``MIXED`` and never used again. A later
+trajectory whose section points land in cells of one label for ``cell_hits``
+consecutive periods takes that label without integrating further. Cells are only valid
+for one parameter point: the caller starts a new table for each.
+"""
+
+import numpy as np
+from numba import njit, types
+from numba.typed import Dict
+
+MIXED = -1  # a cell visited on the way to different labels
+NO_CELL = -1  # key of a point outside the representable range
+_BITS = 15  # bits per coordinate of a key (4 coordinates fit in an int64)
+_OFFSET = 1 << (_BITS - 1)
+
+
+@njit(cache=True)
+def new_cells():
+    """An empty table {cell key: label code}."""
+    return Dict.empty(key_type=types.int64, value_type=types.int64)
+
+
+@njit(cache=True)
+def cell_key(y, cell_size):
+    """Integer key of the cell holding y, or NO_CELL when a coordinate is beyond range
+    (or the state has more than 4 coordinates)."""
+    if y.shape[0] * _BITS > 63:
+        return NO_CELL
+    key = 0
+    for i in range(y.shape[0]):
+        k = np.floor(y[i] / cell_size)
+        if not (-_OFFSET <= k < _OFFSET):
+            return NO_CELL
+        key |= (int(k) + _OFFSET) << (_BITS * i)
+    return key
+
+
+@njit(cache=True)
+def remember_cells(cells, visited, n_visited, code):
+    """Mark the cells of ``visited[:n_visited]`` with ``code`` (MIXED where they disagree)."""
+    for i in range(n_visited):
+        key = visited[i]
+        if key == NO_CELL:
+            continue
+        if key in cells:
+            if cells[key] != code:
+                cells[key] = MIXED
+        else:
+            cells[key] = code

@@ -1,0 +1,67 @@
+"""Recurrence cells: keys identify boxes of the section exactly, conflicting labels mark a
+cell MIXED, and a sweep with cells labels as a sweep without them."""
+
+from dataclasses import replace
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from softimpact_cli.kernels.cells import MIXED, NO_CELL, cell_key, new_cells, remember_cells
+
+coordinate = st.integers(min_value=-5000, max_value=5000)
+offset = st.floats(min_value=0.01, max_value=0.99)  # clear of rounding at cell edges
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(coordinate, min_size=4, max_size=4), st.lists(offset, min_size=4, max_size=4),
+       st.lists(offset, min_size=4, max_size=4), st.sampled_from([0.05, 0.1, 0.37]))
+def test_points_share_a_key_exactly_when_they_share_a_cell(cell, a, b, size):
+    base = np.array(cell, dtype=float)
+    ya = (base + np.array(a)) * size
+    yb = (base + np.array(b)) * size
+    same = np.array_equal(np.floor(ya / size), np.floor(yb / size))
+    assert (cell_key(ya, size) == cell_key(yb, size)) == same
+    neighbour = yb.copy()
+    neighbour[int(np.argmax(b))] += size  # one cell over along one axis
+    assert cell_key(neighbour, size) != cell_key(ya, size) or not same
+
+
+def test_far_points_and_wide_states_have_no_cell():
+    assert cell_key(np.array([1e9, 0.0, 0.0, 0.0]), 0.1) == NO_CELL
+    assert cell_key(np.array([np.nan, 0.0]), 0.1) == NO_CELL
+    assert cell_key(np.zeros(5), 0.1) == NO_CELL  # more coordinates than a key holds
+    assert cell_key(np.array([-0.05, 0.05]), 0.1) != cell_key(np.array([0.05, 0.05]), 0.1)
+
+
+def test_cells_visited_on_the_way_to_two_labels_become_mixed():
+    cells = new_cells()
+    remember_cells(cells, np.array([10, 11, NO_CELL, 12]), 4, 3)
+    assert dict(cells) == {10: 3, 11: 3, 12: 3}
+    remember_cells(cells, np.array([12, 13, 99]), 2, 1000)  # only the first two count
+    assert dict(cells) == {10: 3, 11: 3, 12: MIXED, 13: 1000}
+    remember_cells(cells, np.array([12]), 1, 3)
+    assert cells[12] == MIXED  # once mixed, always mixed
+
+
+def test_a_sweep_with_cells_labels_like_one_without():
+    from tests.sweep.test_capture import context
+
+    from softimpact_cli.sweep.chunks import CAPTURED_BY_CELLS, run_chunk
+
+    ctx, _ = context(res=24)  # figure 6(d) plane, 576 initial conditions, one chunk
+    n = ctx.states.shape[0]
+    plain = run_chunk(ctx, 0, n)
+    cells = replace(ctx, integrator=replace(ctx.integrator, cell_size=0.05, cell_hits=5))
+    fast = run_chunk(cells, 0, n)
+    assert np.array_equal(fast["label"], plain["label"])
+    by_cells = fast["captured"] == CAPTURED_BY_CELLS
+    assert by_cells.mean() > 0.3
+    assert fast["periods_used"][by_cells].mean() < plain["periods_used"][by_cells].mean()
+    # a cell-labelled trajectory reports its label's orbit period and penetration
+    assert np.array_equal(fast["period"], plain["period"])
+    assert np.allclose(fast["max_penetration"], plain["max_penetration"])
+    # the same chunk gives the same result (cells start empty at every run and point)
+    again = run_chunk(cells, 0, n)
+    for key in ("label", "periods_used", "captured"):
+        assert np.array_equal(again[key], fast[key])
