@@ -10,7 +10,7 @@ import numpy as np
 from ..expressions import format_multiple
 from ..info import GRID_AXES, grid_dims, grid_point
 from . import parameter_text, pyplot
-from .palette import colour_of
+from .palette import colour_of, solution_order
 
 SYMBOLS = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "t0": "t_0"}
 AXIS_SYMBOLS = {"x1": "x_1", "x2": "x_2", "v1": r"\dot x_1", "v2": r"\dot x_2", "x": "x",
@@ -60,7 +60,8 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
         raise ValueError(f"{n_panels} grid points; at most {max_panels} panels (raise "
                          "--max-panels)")
     position = {c: i for i, c in enumerate(codes)}
-    cmap = ListedColormap([colour_of(n) for n in names])
+    order = solution_order(ds)
+    cmap = ListedColormap([colour_of(n, order) for n in names])
     x = ds[a0].values
     y = ds[a1].values
     variables = [str(v) for v in ds["variable"].values]
@@ -86,7 +87,7 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
             pts = pts[np.isfinite(pts[:, 0])]
             if count == 0 and pts.size == 0:
                 continue
-            colour = colour_of(names[j])
+            colour = colour_of(names[j], order)
             if pts.size:
                 ax.plot(pts[:, i0], pts[:, i1], "o", ms=6, mfc=colour, mec="k", mew=1.0,
                         zorder=3)

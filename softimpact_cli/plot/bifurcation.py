@@ -9,7 +9,7 @@ import numpy as np
 
 from ..labels import latex_of
 from . import parameter_text, pyplot
-from .palette import IMPACTING, colour_of
+from .palette import IMPACTING, colour_of, solution_order
 
 
 def plot_bifurcation(ds, out: str | Path) -> Path:
@@ -18,10 +18,11 @@ def plot_bifurcation(ds, out: str | Path) -> Path:
 
     d = ds["d"].values
     names = [str(n) for n in ds["branch_name"].values]
+    order = solution_order(ds)
     fig, axs = plt.subplots(2, 1, figsize=(9, 7.5), sharex=True, constrained_layout=True)
     handles = []
     for i, name in enumerate(names):
-        colour = colour_of(name)
+        colour = colour_of(name, order)
         imp = ds["impacting"].values[i].astype(bool)
         for ax, var in zip(axs, ("section_x1", "section_x2"), strict=True):
             pts = ds[var].values[i]  # (d, point)

@@ -29,7 +29,7 @@ def plot_catalogue(ds, out: str | Path) -> Path:
         p = int(ds["attractor_period"].values[i])
         curve = ds["attractor_curve"].values[i, : p * spp]
         pts = ds["attractor_points"].values[i, :p]
-        c = colour_of(name)
+        c = colour_of(name, names)
         ax.plot(curve[:, 0], curve[:, 1], color=c, lw=1.2, label=latex_of(name))
         ax.plot(pts[:, 0], pts[:, 1], "o", ms=6, color=c, mec="k", zorder=3)
         for k, (x, v) in enumerate(pts):
@@ -67,7 +67,7 @@ def plot_catalogue(ds, out: str | Path) -> Path:
         cax.plot(np.arange(q), orbit[:, 2], "s", ms=3, color="tab:red")
         cax.set_title(latex_of(cname), fontsize=10)
         for spine in cax.spines.values():  # the label's colour, as in the basin figures
-            spine.set_edgecolor(colour_of(cname))
+            spine.set_edgecolor(colour_of(cname, combos))
             spine.set_linewidth(2.0)
         cax.set_xlabel("$t/T$", fontsize=8)
         cax.tick_params(labelsize=7)

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..labels import latex_of
 from . import pyplot
-from .palette import colour_of
+from .palette import colour_of, solution_order
 
 
 def roman(n: int) -> str:
@@ -72,6 +72,7 @@ def jumps(values: np.ndarray, factor: float = 8.0) -> np.ndarray:
 def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
     plt = pyplot()
     names = [str(n) for n in ds["combination_label"].values]
+    order = solution_order(ds) or names
     phi = ds["phi"].values
     dc = ds["d_crit"].values
     n_traces = ds.sizes.get("trace_phi", 0)
@@ -96,7 +97,7 @@ def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
     for i, name in enumerate(names):
         cut = jumps(dc[i]) + 1
         ax.plot(np.insert(phi, cut, np.nan), np.insert(dc[i], cut, np.nan),
-                color=colour_of(name), lw=1.6, label=latex_of(name))
+                color=colour_of(name, order), lw=1.6, label=latex_of(name))
     ax.set_xlabel(r"$\varphi$")
     ax.set_ylabel("$d$")
     ax.set_xlim(phi[0], phi[-1])
@@ -118,9 +119,9 @@ def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
             g = ds["relative_trace"].values[k, i]
             g = g[np.isfinite(g)]
             t = np.arange(g.size) / spp
-            tax.plot(t, g, color=colour_of(name), lw=1.2, label=latex_of(name))
+            tax.plot(t, g, color=colour_of(name, order), lw=1.2, label=latex_of(name))
             j = int(np.argmax(g))
-            tax.plot(t[j], g[j], "o", color=colour_of(name), mec="k")
+            tax.plot(t[j], g[j], "o", color=colour_of(name, order), mec="k")
             tax.annotate(f"{g[j]:.4f}", (t[j], g[j]), textcoords="offset points",
                          xytext=(4, 4), fontsize=7)
         tax.set_xlabel("$t/T$")

@@ -1,27 +1,47 @@
-"""One colour per label name, the same in every panel and every figure."""
+"""One colour per solution, the same in every panel and every figure of a system.
+
+A system's catalogue numbers its solutions in a fixed order (attractors by period and
+amplitude, combinations by left attractor, right attractor and shift), and that order is
+the same in every result of the system, whatever d, phi, k_c or c_c. Solutions take
+colours from DISTINCT in that order, so no two solutions of one catalogue share a colour
+(up to len(DISTINCT)); impacting solutions share one extra colour, and unresolved and
+diverged outcomes have their own. Without the catalogue order (a bare name), a name
+falls back to a stable hash of itself.
+"""
 
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Sequence
 
-# Fixed colours for the names that recur across the study's figures; others are derived
-# from a stable hash of the name so that they never change between runs.
-FIXED = {
-    "L1^1": "#1f77b4", "L1^2": "#d62728", "L2^1": "#1f77b4", "L5^2": "#2ca02c",
-    "L1^1 R1-0^1": "#1f77b4", "L1^1 R1-0^2": "#ff7f0e", "L1^2 R1-0^1": "#2ca02c",
-    "L1^2 R1-0^2": "#d62728",
-    "unresolved": "#7f7f7f", "diverged": "#000000",
-}
 IMPACTING = "#8c564b"  # every impacting solution shares one extra colour
-CYCLE = ["#9467bd", "#e377c2", "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a",
-         "#ff9896", "#c5b0d5", "#c49c94", "#f7b6d2", "#dbdb8d", "#9edae5", "#393b79",
-         "#637939", "#8c6d31", "#843c39", "#7b4173", "#3182bd", "#e6550d"]
+SPECIAL = {"unresolved": "#7f7f7f", "diverged": "#000000"}
+# 30 colours, the most distinct first (tab10 without brown and grey, then tab20's light
+# partners, then darker tab20b/tab20c tones); brown and grey stay reserved above.
+DISTINCT = [
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#e377c2", "#bcbd22", "#17becf",
+    "#393b79", "#637939", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896", "#c5b0d5", "#f7b6d2",
+    "#dbdb8d", "#9edae5", "#8c6d31", "#843c39", "#7b4173", "#3182bd", "#e6550d", "#31a354",
+    "#756bb1", "#fd8d3c", "#74c476", "#9e9ac8", "#6baed6", "#e7969c",
+]
 
 
-def colour_of(name: str) -> str:
-    if name in FIXED:
-        return FIXED[name]
+def solution_order(ds) -> list[str]:
+    """The catalogue's solution names in catalogue order (pairs: combinations; one body:
+    attractors), from any result that carries the catalogue; [] if it does not."""
+    for var in ("combination_name", "attractor_name"):
+        if var in ds:
+            return [str(n) for n in ds[var].values]
+    return []
+
+
+def colour_of(name: str, order: Sequence[str] = ()) -> str:
+    """Colour of a solution name; ``order`` is ``solution_order`` of the result drawn."""
     if name.startswith("impacting"):
         return IMPACTING
+    if name in SPECIAL:
+        return SPECIAL[name]
+    if name in order:
+        return DISTINCT[list(order).index(name) % len(DISTINCT)]
     digest = int(hashlib.sha256(name.encode()).hexdigest(), 16)
-    return CYCLE[digest % len(CYCLE)]
+    return DISTINCT[digest % len(DISTINCT)]

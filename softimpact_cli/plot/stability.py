@@ -11,7 +11,7 @@ from ..info import grid_dims
 from ..labels import latex_of, parse_label
 from . import pyplot
 from .basins import SYMBOLS
-from .palette import IMPACTING, colour_of
+from .palette import IMPACTING, colour_of, solution_order
 
 
 def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
@@ -29,6 +29,8 @@ def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
     lo = bs["ci_low"].squeeze(drop=True)
     hi = bs["ci_high"].squeeze(drop=True)
     fig, ax = plt.subplots(figsize=(9.0, 4.8), constrained_layout=True)
+    order = solution_order(ds)
+    never = []  # solutions of the catalogue no sample reached, at any grid point
     for g in [str(v) for v in bs["group"].values]:
         if g.startswith("impacting P"):
             continue
@@ -41,8 +43,11 @@ def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
         else:
             if parse_label(g).kind == "impacting":
                 continue
-            colour, style, label = colour_of(g), "-", latex_of(g)
+            colour, style, label = colour_of(g, order), "-", latex_of(g)
         s = share.sel(group=g).values
+        if label == latex_of(g) and not np.any(s > 0):
+            never.append(g)
+            continue
         if not np.any(hi.sel(group=g).values > 0):
             continue
         ax.plot(xs, s, style, color=colour, marker="o", ms=3, label=label)
@@ -55,7 +60,9 @@ def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
     t0_text = ("random $t_0$" if mode == "random" else "$t_0$ swept" if mode == "grid" else
                f"$t_0 = {float(ds['t0'].values.ravel()[0]) / T:.4g}\\,T$")
     ax.set_title(f"{ds.attrs.get('model')} pair, n = {bs.attrs['n']} samples per point, "
-                 f"95% Wilson bands; {t0_text}", fontsize=9)
+                 f"95% Wilson bands; {t0_text}"
+                 + (f"\n{len(never)} catalogue solutions reached by no sample are not drawn"
+                    if never else ""), fontsize=9)
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
