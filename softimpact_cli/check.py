@@ -2,8 +2,8 @@
 
 Tightened settings: rtol and atol / 100, convergence_tol / 10, twice the period budget,
 4x the RK4 steps, no capture near known orbits. Sweeps compare the labels of a random
-subset of trajectories (the share that changes is the estimated label error);
-critical-distance scenes compare
+subset of trajectories (after a sweep, its stored labels against the tightened rerun);
+the share that changes is the estimated label error. Critical-distance scenes compare
 d_crit at a subset of phases; bifurcation scenes compare destruction points. Each
 report carries both wall times and their ratio.
 """
@@ -25,11 +25,16 @@ def tightened(s: IntegratorSettings) -> IntegratorSettings:
                    steps_per_period=4 * s.steps_per_period, capture_tol=0.0)
 
 
-def check_scene(scene: Scene, sample: int = 200, seed: int = 0) -> dict:
-    """A report comparing the scene's settings with tightened ones on a random subset."""
+def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> dict:
+    """A report comparing the scene's settings with tightened ones on a random subset.
+
+    ``result``: the sweep's own finished dataset; its stored labels then stand for the
+    scene's settings (so that what depends on the order of a run, recurrence cells, is
+    checked as it ran) and its wall time per trajectory for their cost.
+    """
     kind = scene.analysis.kind
     if kind in SWEEP_KINDS:
-        return _check_sweep(scene, sample, seed)
+        return _check_sweep(scene, sample, seed, result)
     if kind == "dcrit":
         return _check_dcrit(scene, sample, seed)
     if kind == "bifurcation":
@@ -37,7 +42,7 @@ def check_scene(scene: Scene, sample: int = 200, seed: int = 0) -> dict:
     raise ValueError(f"check covers sweeps, dcrit and bifurcation scenes, not {kind!r}")
 
 
-def _check_sweep(scene: Scene, sample: int, seed: int) -> dict:
+def _check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
     from .labels import name_of
     from .sweep.chunks import run_chunk
     from .sweep.runner import prepare_catalogues, sweep_context
@@ -52,7 +57,12 @@ def _check_sweep(scene: Scene, sample: int, seed: int) -> dict:
     picks = np.sort(rng.choice(total, size=min(sample, total), replace=False))
     walls = {}
     labels = {}
-    for key, ctx in (("scene", base), ("tight", tight)):
+    runs = (("scene", base), ("tight", tight))
+    if result is not None:
+        labels["scene"] = result["label"].values.ravel()[picks]
+        walls["scene"] = float(result.attrs["wall_s"]) * picks.size / total
+        runs = runs[1:]
+    for key, ctx in runs:
         start = time.perf_counter()
         labels[key] = np.array([run_chunk(ctx, int(i), int(i) + 1)["label"][0] for i in picks])
         walls[key] = time.perf_counter() - start

@@ -211,7 +211,7 @@ def _store_check(scene, out: Path, sample: int) -> None:
     from .check import check_scene, report_attributes
     from .store import add_attributes
 
-    report = check_scene(scene, sample)
+    report = check_scene(scene, sample, result=_open(str(out)))
     add_attributes(out, report_attributes(report))
     click.echo(_format_check(report))
 

@@ -67,3 +67,22 @@ def test_sweep_check_stored_in_result(tmp_path):
                                       str(out), "--json"], capture_output=True,
                                      text=True).stdout)
     assert info["check_sample"] == 10 and "wall_s" in info
+
+
+def test_check_after_a_sweep_compares_the_stored_labels(tmp_path):
+    """A sweep's check judges the labels the sweep stored (recurrence cells depend on the
+    order of a run): a label corrupted in the result is counted as changed."""
+    from softimpact_cli.sweep import run_sweep
+
+    out = tmp_path / "s.h5"
+    scene = parse_scene(SWEEP.replace("{out}", str(out)), "s.toml")
+    ds = run_sweep(scene, out, workers=1)
+    clean = check_scene(scene, sample=50, result=ds)
+    assert clean["changed"] == 0
+    bad = ds.copy(deep=True)
+    flat = bad["label"].values.reshape(-1)
+    flat[:5] = -3  # "diverged" where the sweep found attractors
+    report = check_scene(scene, sample=50, result=bad)
+    assert report["changed"] == 5
+    assert all(k.startswith("diverged -> ") for k in report["changes"])
+    assert report["wall_s"] == float(ds.attrs["wall_s"])  # sample = all 50 trajectories
