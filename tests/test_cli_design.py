@@ -75,6 +75,7 @@ def test_info_json_gives_the_pick(design_result):
     ref = info["reference"]
     assert (ref["d"], ref["k_c"], ref["c_c"]) == (5.0, 8.0, 10.0)  # defaults filled in
     assert "--target 'L1^1 R1-0^1'" in info["scene"]  # the override is recorded
+    assert f"d={best['d']}" in info["parameters"]  # the parameters are the pick's
 
 
 def test_info_text_and_plot(design_result, tmp_path):
@@ -92,6 +93,8 @@ def test_existing_result_needs_overwrite(design_result):
     before = out.stat().st_mtime_ns
     result = run("sweep", scene, "-q")  # sweep runs a design scene the same way
     assert result.exit_code == 2 and "--overwrite" in result.stderr
+    result = run("sweep", scene, "--resume")
+    assert result.exit_code == 2 and "a design reruns whole" in result.stderr
     assert out.stat().st_mtime_ns == before
 
 

@@ -13,9 +13,10 @@ from ..info import design_summary
 from ..labels import latex_of
 from . import parameter_text, pyplot
 from .dcrit import jumps
-from .palette import IMPACTING, colour_of
+from .palette import IMPACTING, colour_of, solution_order
 
 TWO_PI = 2 * np.pi
+REGION = "#ffd54f"  # the target-only region: amber, unlike any curve colour
 AXIS_TEX = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c"}
 
 
@@ -43,28 +44,37 @@ def _plane(ax, ds, s: dict) -> None:
     _, high = _tiled(phi, np.minimum(ds["region_high"].values, 1e6), x_lo, x_hi, gaps=False)
     ok = np.isfinite(low) & np.isfinite(high) & (low < high)
     ax.fill_between(xs, np.clip(low, y_lo, y_hi), np.clip(high, y_lo, y_hi), where=ok,
-                    color=colour_of(target), alpha=0.22, lw=0,
+                    color=REGION, alpha=0.45, lw=0,
                     label=f"only {latex_of(target)} survives")
+    order = solution_order(ds)
     for i, name in enumerate(str(n) for n in ds["dcrit_name"].values):
         x, y = _tiled(phi, ds["critical_distance"].values[i], x_lo, x_hi)
-        ax.plot(x, y, color=colour_of(name), lw=2.4 if name == target else 1.1,
+        ax.plot(x, y, color="k" if name == target else colour_of(name, order),
+                lw=2.2 if name == target else 1.1, zorder=2.5 if name == target else 2,
                 label=latex_of(name) + (" (target)" if name == target else ""))
     ax.add_patch(_rectangle(b_phi, b_d))
     role = [str(r) for r in ds["role"].values]
     pts = {r: [i for i, x in enumerate(role) if x == r] for r in set(role)}
     P = {a: ds[f"point_{a}"].values for a in ("d", "phi")}
     sel = pts.get("screened", [])
-    ax.plot(P["phi"][sel], P["d"][sel], ".", color="0.35", ms=5, label="screened")
+    score = ds["score"].values[sel]
+    dots = ax.scatter(P["phi"][sel], P["d"][sel], c=score, cmap="viridis", s=22,
+                      vmin=min(float(score.min(initial=1.0)), 0.9), vmax=1.0, zorder=3,
+                      edgecolors="0.2", linewidths=0.4, label="screened")
+    bar = ax.figure.colorbar(dots, ax=ax, pad=0.01, fraction=0.04)
+    bar.set_label(f"screened: target - impacting share ({ds.attrs['screen_n']} samples)",
+                  fontsize=8)
     for k, p in enumerate(s["runners_up"]):
-        ax.plot(p["phi"], p["d"], "s", color="#ff7f0e", mec="k", ms=7,
+        ax.plot(p["phi"], p["d"], "s", color="#ff7f0e", mec="k", ms=7, zorder=4,
                 label="runners-up" if k == 0 else None)
         ax.annotate(str(k + 1), (p["phi"], p["d"]), textcoords="offset points",
                     xytext=(5, 4), fontsize=8)
     if s["reference"]:
         r = s["reference"]
-        ax.plot(r["phi"], r["d"], "D", color="w", mec="k", ms=7, label="reference")
+        ax.plot(r["phi"], r["d"], "D", color="w", mec="k", ms=8, zorder=4, label="reference")
     best = s["best"]
-    ax.plot(best["phi"], best["d"], "*", color="#d62728", mec="k", ms=16, label="pick")
+    ax.plot(best["phi"], best["d"], "*", color="#d62728", mec="k", ms=16, zorder=5,
+            label="pick")
     ax.set_xlim(x_lo, x_hi)
     ax.set_ylim(y_lo, y_hi)
     ax.set_xlabel(r"$\varphi$ (rad)")

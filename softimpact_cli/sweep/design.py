@@ -109,7 +109,9 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
     ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
                   combine_attrs="override", compat="override", join="exact")
     ds.attrs.update(provenance(scene, started, time.time(), time.perf_counter() - t_start))
+    chosen = {**scene.values, **pick}  # "parameters" names the pick, not [coupling]
     ds.attrs.update({"analysis": "design", "executor": executor.describe(),
+                     "parameters": ", ".join(f"{k}={v}" for k, v in chosen.items()),
                      "t0_mode": "random" if ic.t0 is None else "fixed",
                      "t0": float(ic.t0) if ic.t0 is not None else -1.0,
                      "forcing_period": 2 * np.pi / float(scene.values["w"]),
