@@ -245,7 +245,7 @@ def agreement(got: list[str], ref: list[str]) -> tuple[int, int, str]:
 def kernel_timer(acc: dict):
     """Time every call into the numba kernels (engine calls them as orbit.<name>)."""
     saved = {}
-    for name in ("classify", "flow", "record"):
+    for name in ("classify", "classify_near", "flow", "record"):
         fn = getattr(orbit_kernels, name)
         saved[name] = fn
 
@@ -267,15 +267,18 @@ def kernel_timer(acc: dict):
 def phase_timer(acc: dict):
     """Wall time of the sweep's phases: catalogue, chunks (classification), the rest."""
     prep, chunk = runner.prepare_catalogues, executors.run_chunk
+    capturable = runner.capturable_orbits
 
-    def timed_prep(*a, **kw):
-        acc["phase"] = "catalogue_kernels"
-        t = time.perf_counter()
-        try:
-            return prep(*a, **kw)
-        finally:
-            acc["catalogue"] = acc.get("catalogue", 0.0) + time.perf_counter() - t
-            acc["phase"] = "other_kernels"
+    def timed(fn):
+        def run(*a, **kw):
+            acc["phase"] = "catalogue_kernels"
+            t = time.perf_counter()
+            try:
+                return fn(*a, **kw)
+            finally:
+                acc["catalogue"] = acc.get("catalogue", 0.0) + time.perf_counter() - t
+                acc["phase"] = "other_kernels"
+        return run
 
     def timed_chunk(*a, **kw):
         acc["phase"] = "chunk_kernels"
@@ -286,11 +289,13 @@ def phase_timer(acc: dict):
             acc["chunks"] = acc.get("chunks", 0.0) + time.perf_counter() - t
             acc["phase"] = "other_kernels"
 
-    runner.prepare_catalogues, executors.run_chunk = timed_prep, timed_chunk
+    runner.prepare_catalogues, executors.run_chunk = timed(prep), timed_chunk
+    runner.capturable_orbits = timed(capturable)
     try:
         yield acc
     finally:
         runner.prepare_catalogues, executors.run_chunk = prep, chunk
+        runner.capturable_orbits = capturable
 
 
 def profile_default(n_side: int, tmp: Path) -> tuple[str, list[str]]:
@@ -308,7 +313,7 @@ def profile_default(n_side: int, tmp: Path) -> tuple[str, list[str]]:
     k_all = k_cat + k_chunk + acc.get("other_kernels", 0.0)
     lines = [
         f"single-process default run, {n} ICs ({n_side} x {n_side}), wall {total:.2f} s:",
-        f"  catalogue search + Newton refinement: {cat:6.2f} s ({100 * cat / total:4.1f} %), "
+        f"  catalogue, Newton, critical distances: {cat:5.2f} s ({100 * cat / total:4.1f} %), "
         f"of which in numba kernels {k_cat:.2f} s ({100 * k_cat / max(cat, 1e-12):.0f} %)",
         f"  classifying the ICs (run_chunk):      {chunks:6.2f} s ({100 * chunks / total:4.1f} %), "
         f"of which in numba kernels {k_chunk:.2f} s ({100 * k_chunk / max(chunks, 1e-12):.0f} %)"
@@ -330,6 +335,53 @@ def profile_default(n_side: int, tmp: Path) -> tuple[str, list[str]]:
                  "their Python names, e.g. orbit.py(classify)):")
     lines += ["    " + ln for ln in top[start:start + 13]]
     return "\n".join(lines), lines
+
+
+def rhs_floor(periods: int = 400, repeats: int = 5) -> str:
+    """How close the integrator runs to bare right-hand-side evaluations: one trajectory of
+    the figure 6(d) pair on its attractor (no contact), CPU time of the whole integration
+    against the same number of bare ``rhs`` calls in a compiled loop (best of repeats)."""
+    from numba import njit
+
+    scene = scene_at(2)
+    problem = Problem(scene.system, scene.values, scene.integrator)
+    T = problem.period
+    y0 = np.array([1.0, 0.0, -1.0, 0.0])
+    A, b, rel, contact = problem.kernel_args()
+
+    def integrate():
+        return orbit_kernels.flow(problem.advance, problem.system.rhs, problem.params,
+                                  y0.copy(), 0.0, periods * T, A, b, rel, contact,
+                                  problem.options())
+
+    @njit
+    def bare(rhs, p, n, h):
+        y = np.array([1.0, 0.0, -1.0, 0.0])
+        out = np.zeros(4)
+        acc = 0.0
+        for i in range(n):
+            rhs(i * h, y, p, 0, out)
+            acc += out[1]
+            y[0] += 1e-12 * out[0]  # the state changes, so no call is hoisted out
+        return acc
+
+    counters = integrate()[3]
+    n_rhs, n_steps = int(counters[3]), int(counters[1])
+    bare(problem.system.rhs, problem.params, 10, T / 100)
+    t_int = t_bare = np.inf
+    for _ in range(repeats):
+        t = time.process_time()
+        integrate()
+        t_int = min(t_int, time.process_time() - t)
+        t = time.process_time()
+        bare(problem.system.rhs, problem.params, n_rhs, T / 100)
+        t_bare = min(t_bare, time.process_time() - t)
+    return (f"integrator against bare right-hand sides ({periods} periods on the attractor, "
+            f"{problem.integrator.method}, {n_steps} steps, {n_rhs} evaluations): "
+            f"{1e9 * t_int / n_rhs:.0f} ns per evaluation inside the integrator, "
+            f"{1e9 * t_bare / n_rhs:.0f} ns bare: the integrator costs {t_int / t_bare:.1f}x "
+            "its right-hand sides (error estimate, dense output, switch watch, contact "
+            "maximum, step control)")
 
 
 def stability_run(n: int, tmp: Path) -> tuple[float, float, dict]:
@@ -539,6 +591,9 @@ def main(argv=None) -> int:
         print(f"\n[profile] softimpact defaults, one process, {args.profile_side ** 2} ICs ...",
               flush=True)
         text, lines = profile_default(args.profile_side, tmp)
+        floor = rhs_floor()
+        lines.append("  " + floor)
+        text += "\n  " + floor
         print(text)
         extra += ["", "## Where softimpact's default run spends its time", "", "```",
                   *lines, "```"]
