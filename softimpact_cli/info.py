@@ -242,6 +242,8 @@ def design_point(ds, i: int) -> dict:
         "n": int(ds["n_samples"].values[i]),
         "share": float(share[t]), "ci95": [float(lo[t]), float(hi[t])],
         "impacting_share": float(share[m]), "impacting_ci95": [float(lo[m]), float(hi[m])],
+        "unresolved_share": float(share[group.index("unresolved")]) if "unresolved" in group
+        else 0.0,
         "score": float(ds["score"].values[i]),
         "margin": {k: float(ds[f"margin_{k}"].values[i])
                    for k in ("relative", "d_to_target", "d_to_boundary", "phi_to_boundary")},
@@ -276,14 +278,15 @@ def format_design(ds) -> str:
     head = (f"design for {s['target']}: {s['screened']} candidates screened on "
             f"{s['screen_n']} samples; shares with 95% Wilson intervals")
     lines = [head, f"{'':10s} {'d':>8s} {'phi':>8s} {'k_c':>7s} {'c_c':>7s} {'n':>5s} "
-                   f"{'target share [95%]':>24s} {'impacting':>9s} {'margin':>7s} "
-                   f"{'d-d_crit':>8s}"]
+                   f"{'target share [95%]':>24s} {'impacting':>9s} {'unresolved':>10s} "
+                   f"{'margin':>7s} {'d-d_crit':>8s}"]
 
     def row(name: str, p: dict) -> str:
         ci = p["ci95"]
         return (f"{name:10s} {p['d']:8.4f} {p['phi']:8.4f} {p['k_c']:7.3f} {p['c_c']:7.3f} "
                 f"{p['n']:5d} {p['share']:7.3f} [{ci[0]:.3f}, {ci[1]:.3f}] "
-                f"{p['impacting_share']:9.3f} {p['margin']['relative']:7.3f} "
+                f"{p['impacting_share']:9.3f} {p['unresolved_share']:10.3f} "
+                f"{p['margin']['relative']:7.3f} "
                 f"{p['margin']['d_to_target']:8.3f}")
 
     lines.append(row("best", s["best"]))
@@ -300,5 +303,6 @@ def format_design(ds) -> str:
         lines.append(f"  {p['parameter']:>3s} {p['step']:+d} step: {p['parameter']} = "
                      f"{p[p['parameter']]:.4f}  share {p['share']:.3f} "
                      f"[{p['ci95'][0]:.3f}, {p['ci95'][1]:.3f}], impacting "
-                     f"{p['impacting_share']:.3f}, target {exists}")
+                     f"{p['impacting_share']:.3f}, unresolved {p['unresolved_share']:.3f}, "
+                     f"target {exists}")
     return "\n".join(lines)

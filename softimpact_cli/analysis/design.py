@@ -18,8 +18,11 @@
    min_margin``, spread by a Halton set (bases 2, 3, 5, 7, rotated by the seed) over
    (grid phase, d within the allowed interval at that phase, k_c, c_c): a 4-D lattice of
    48 points would give two or three levels per axis, a Halton set 48 on each.
-4. **Screening and refinement.** Score = basin stability of T minus that of all impacting
-   solutions, on the first ``screen_n`` samples; the best ``refine`` are rerun on all n
+4. **Screening and refinement.** Score = basin stability of T minus the share of samples
+   that failed: all impacting solutions, and unresolved and diverged outcomes too (a
+   sample that did not settle within the budget is not known to reach T; rewarding it
+   would favour points where trajectories merely settle slowly), on the first
+   ``screen_n`` samples; the best ``refine`` are rerun on all n
    samples (the screened prefix is reused, not recomputed) and ranked again. Ranking:
    the best score; points whose score lies within the Wilson half-width of the best
    one's target share are tied, and among tied points the larger relative margin wins.
@@ -210,6 +213,16 @@ def group_counts(codes: np.ndarray, catalogue_names: tuple[str, ...]
     return list(grouping), counts
 
 
+FAILED = (IMPACTING, "unresolved", "diverged")  # outcomes the score counts against T
+
+
+def scores(group_names: list[str], counts: np.ndarray, target: str, n) -> np.ndarray:
+    """(points,) target share minus the failed share (impacting, unresolved, diverged)
+    from group counts (points, groups) of n samples each."""
+    failed = sum(counts[:, group_names.index(g)] for g in FAILED if g in group_names)
+    return (counts[:, group_names.index(target)] - failed) / n
+
+
 def ranking(score: np.ndarray, target_count: np.ndarray, n: int,
             margin: np.ndarray) -> np.ndarray:
     """Indices from best to worst (see the module docstring for the tie rule)."""
@@ -324,7 +337,7 @@ def design(system, values: dict, left: list, settings, n: int, evaluate: Evaluat
 def _rank(codes: np.ndarray, names: tuple[str, ...], target: str, margin) -> np.ndarray:
     group, counts = group_counts(codes, names)
     n = codes.shape[1]
-    score = (counts[:, group.index(target)] - counts[:, group.index(IMPACTING)]) / n
+    score = scores(group, counts, target, n)
     return ranking(score, counts[:, group.index(target)], n, np.asarray(margin, dtype=float))
 
 
@@ -344,7 +357,6 @@ def design_dataset(rows: list[dict], region: Region, s, n: int, screen_n: int,
     share = counts / n_samples[:, None]
     lo, hi = zip(*(wilson_interval(counts[i], int(n_samples[i])) for i in range(len(rows))),
                  strict=True)
-    target_i, imp_i = group_names.index(s.target), group_names.index(IMPACTING)
     mult = np.array([r.get("multipliers", np.full(4, np.nan + 0j)) for r in rows])
     unitless = {"units": "1"}
     data = {
@@ -362,8 +374,9 @@ def design_dataset(rows: list[dict], region: Region, s, n: int, screen_n: int,
         "share": (("design_point", "group"), share, {"long_name": "basin stability", **unitless}),
         "ci_low": (("design_point", "group"), np.array(lo), {"long_name": "95% Wilson, low"}),
         "ci_high": (("design_point", "group"), np.array(hi), {"long_name": "95% Wilson, high"}),
-        "score": (("design_point",), share[:, target_i] - share[:, imp_i],
-                  {"long_name": "target share minus impacting share", **unitless}),
+        "score": (("design_point",), scores(group_names, counts, s.target, n_samples),
+                  {"long_name": "target share minus impacting, unresolved and diverged "
+                                "shares", **unitless}),
         **{f"margin_{k}": (("design_point",), [r["margin"][k] for r in rows], unitless)
            for k in ("relative", "d_to_target", "d_to_boundary", "phi_to_boundary")},
         "target_exists": (("design_point",), [int(r["exists"]) if "exists" in r else -1

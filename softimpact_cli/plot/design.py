@@ -62,8 +62,8 @@ def _plane(ax, ds, s: dict) -> None:
                       vmin=min(float(score.min(initial=1.0)), 0.9), vmax=1.0, zorder=3,
                       edgecolors="0.2", linewidths=0.4, label="screened")
     bar = ax.figure.colorbar(dots, ax=ax, pad=0.01, fraction=0.04)
-    bar.set_label(f"screened: target - impacting share ({ds.attrs['screen_n']} samples)",
-                  fontsize=8)
+    bar.set_label(f"screened: score = target share - failed share ({ds.attrs['screen_n']} "
+                  "samples)", fontsize=8)
     for k, p in enumerate(s["runners_up"]):
         ax.plot(p["phi"], p["d"], "s", color="#ff7f0e", mec="k", ms=7, zorder=4,
                 label="runners-up" if k == 0 else None)

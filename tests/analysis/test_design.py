@@ -233,3 +233,16 @@ def test_same_seed_same_design_whatever_the_workers(small_design):
     again = run_design(scene, workers=1)
     for key in ("point_d", "point_phi", "point_k_c", "point_c_c", "count", "role"):
         assert (again[key].values == ds[key].values).all(), key
+
+
+def test_unresolved_samples_count_against_the_target():
+    """A point where most samples never settle is no better than one where they impact."""
+    from softimpact_cli.analysis.design import scores
+
+    groups = ["L1^1 R1-0^1", "impacting (all)", "unresolved"]
+    counts = np.array([[10, 0, 90],    # 10% target, the rest unresolved
+                       [18, 82, 0],    # 18% target, the rest impacting
+                       [10, 90, 0]])
+    s = scores(groups, counts, "L1^1 R1-0^1", 100)
+    assert s == pytest.approx([-0.8, -0.64, -0.8])
+    assert ranking(s, counts[:, 0], 100, np.zeros(3))[0] == 1
