@@ -61,7 +61,8 @@ def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
                f"$t_0 = {float(ds['t0'].values.ravel()[0]) / T:.4g}\\,T$")
     ax.set_title(f"{ds.attrs.get('model')} pair, n = {bs.attrs['n']} samples per point, "
                  f"95% Wilson bands; {t0_text}"
-                 + (f"\n{len(never)} catalogue solutions reached by no sample are not drawn"
+                 + (f"\nnot drawn: {len(never)} catalogue solution"
+                    f"{'s' if len(never) > 1 else ''} that no sample reached"
                     if never else ""), fontsize=9)
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     out = Path(out)
