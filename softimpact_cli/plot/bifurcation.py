@@ -19,7 +19,7 @@ def plot_bifurcation(ds, out: str | Path) -> Path:
     d = ds["d"].values
     names = [str(n) for n in ds["branch_name"].values]
     order = solution_order(ds)
-    fig, axs = plt.subplots(2, 1, figsize=(9, 7.5), sharex=True, constrained_layout=True)
+    fig, axs = plt.subplots(2, 1, figsize=(9, 8.3), sharex=True, constrained_layout=True)
     handles = []
     for i, name in enumerate(names):
         colour = colour_of(name, order)
@@ -36,15 +36,19 @@ def plot_bifurcation(ds, out: str | Path) -> Path:
             if np.isfinite(x):
                 ax.axvline(x, color=colour, lw=0.9, ls="--")
         x = float(ds["destroyed_at"].values[i])
-        falls = str(ds["falls_to"].values[i]) or "—"
+        falls = str(ds["falls_to"].values[i])
+        fate = (f"falls to {latex_of(falls)}" if falls else
+                f"still impacting at $d = {d[-1]:g}$")
+        text = (f"destroyed at $d = {x:.4f}$, {fate}" if np.isfinite(x) else
+                "not destroyed in the range")
         handles.append(Line2D([], [], color=colour, marker="o", ls="--",
-                              label=f"{latex_of(name)}: destroyed at $d = {x:.4f}$, falls to "
-                                    f"{latex_of(falls)}"))
+                              label=f"{latex_of(name)}: {text}"))
     handles.append(Line2D([], [], color=IMPACTING, marker="x", ls="", label="impacting"))
     axs[0].set_ylabel("$x_1(nT)$ (left body)")
     axs[1].set_ylabel("$x_2(nT)$ (right body)")
     axs[1].set_xlabel("$d$")
-    axs[0].legend(handles=handles, fontsize=7, loc="upper left")
+    # below the panels: a legend inside would hide the branches near the top
+    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncols=2)
     if d[0] > d[-1]:
         axs[1].set_xlim(d[0], d[-1])  # d decreases to the right, as it is followed
     fig.suptitle(f"{ds.attrs.get('model')} pair followed in d: "
