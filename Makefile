@@ -132,6 +132,16 @@ bench: $(STAMP)
 bench-precision: $(STAMP)
 	$(PY) benchmarks/bench_precision.py $(QUICKFLAG)
 
+# Extreme parameters (stiff stops, long transients, Duffing and bilinear extremes, both
+# contact laws): the steps `auto` took with each method, statuses over a small plane,
+# agreement with a tight reference; then auto's cost over dopri5 on the non-stiff figure
+# scenes. Table: results/bench/extreme.md (a few minutes on 2 cores).
+EXTREME_SIDE ?= 8
+bench-extreme: $(STAMP)
+	$(PY) benchmarks/bench_extreme.py --side $(EXTREME_SIDE)
+	$(PY) benchmarks/bench_auto_overhead.py --append results/bench/extreme.md
+.PHONY: bench-extreme
+
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 
