@@ -153,6 +153,15 @@ def sweep_summary(ds) -> dict:
             points[k]["predicted"] = int(ds["predicted_count"].isel(sel).values)
             points[k]["found"] = int(ds["found_count"].isel(sel).values)
             points[k]["found_nonimpacting"] = int(ds["found_nonimpacting"].isel(sel).values)
+    if "captured" in ds:  # how trajectories were classified, and by which method
+        how = ds["captured"].values
+        out["classified_by"] = {"own repeat": int(np.sum(how == 0)),
+                                "known orbit": int(np.sum(how == 1)),
+                                "recurrence cells": int(np.sum(how == 2))}
+    if "steps" in ds:
+        stiff = int(ds["stiff_steps"].values.sum())
+        out["steps_by_method"] = {"explicit": int(ds["steps"].values.sum()) - stiff,
+                                  "stiff": stiff}
     return {**out, "complete": bool(int(ds.attrs.get("complete", 0))),
             "n": int(ds.attrs.get("n", label.size)),
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),

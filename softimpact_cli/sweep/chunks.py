@@ -30,6 +30,8 @@ RESULT_FIELDS = {  # name -> dtype of the per-trajectory arrays a chunk returns
     "contacts": np.int32,
     "max_penetration": np.float32,
     "captured": np.int8,
+    "steps": np.int32,
+    "stiff_steps": np.int32,
 }
 
 
@@ -139,5 +141,7 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
         out["contacts"][k] = contacts
         out["max_penetration"][k] = max_pen
         out["captured"][k] = how
+        out["steps"][k] = cls.counters["steps"]
+        out["stiff_steps"][k] = cls.counters["stiff_steps"]
     out["orbits"] = orbits
     return out

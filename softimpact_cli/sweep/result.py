@@ -18,6 +18,8 @@ ATTRIBUTES = {
     "max_penetration": ("max of x1 - x2 - d on the final orbit (>= 0: impacting)", "1"),
     "captured": ("how it was classified: 0 by the repeat of its own section points, 1 by "
                  "capture near a known stable orbit, 2 by recurrence cells", "1"),
+    "steps": ("integrator steps, all methods", "1"),
+    "stiff_steps": ("steps taken by Rodas4 (the others by the explicit pair)", "1"),
 }
 
 

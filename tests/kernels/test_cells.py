@@ -45,9 +45,8 @@ def test_cells_visited_on_the_way_to_two_labels_become_mixed():
 
 
 def test_a_sweep_with_cells_labels_like_one_without():
-    from tests.sweep.test_capture import context
-
     from softimpact_cli.sweep.chunks import CAPTURED_BY_CELLS, run_chunk
+    from tests.sweep.test_capture import context
 
     ctx, _ = context(res=24)  # figure 6(d) plane, 576 initial conditions, one chunk
     n = ctx.states.shape[0]

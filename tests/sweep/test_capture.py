@@ -114,3 +114,18 @@ def test_contact_blocks_capture():
     known = KnownOrbits.from_orbits([orbit], [1.0], 1e-2, 3, 4)
     cls = classify_state(problem, orbit[0], 0.0, known)
     assert cls.captured == -1
+
+
+def test_results_say_how_each_trajectory_was_classified_and_by_which_method(tmp_path):
+    from softimpact_cli.info import describe
+    from softimpact_cli.sweep import run_sweep
+
+    scene = parse_scene(SCENE.format(model="duffing", d=6.0, phi=0.0, lo=-12.0, hi=12.0,
+                                     res=6), "capture.toml")
+    ds = run_sweep(scene, tmp_path / "r.h5", workers=1)
+    summary = describe(ds)
+    by = summary["classified_by"]
+    assert sum(by.values()) == 36 and by["known orbit"] > 0 and by["recurrence cells"] == 0
+    assert by["known orbit"] == int((ds["captured"] == 1).sum())
+    steps = summary["steps_by_method"]
+    assert steps["explicit"] == int(ds["steps"].sum()) > 0 and steps["stiff"] == 0
