@@ -32,13 +32,20 @@ def _tiled(phi: np.ndarray, values: np.ndarray, lo: float, hi: float, gaps: bool
     return np.concatenate(xs), np.concatenate(ys)
 
 
-def _plane(ax, ds, s: dict) -> None:
+def _plane(ax, ds, s: dict, view=None) -> None:
+    """The (d, phi) plane over the bounds (``view`` None) or over ``view`` = (phi_lo,
+    phi_hi, d_lo, d_hi), a zoom around the pick that also shows the perturbed points."""
     phi = ds["dcrit_phi"].values
     b_phi, b_d = ds.attrs["bounds_phi"], ds.attrs["bounds_d"]
-    pad_phi = max(0.08 * (b_phi[1] - b_phi[0]), 0.05)
-    pad_d = max(0.12 * (b_d[1] - b_d[0]), 0.05 * b_d[1])
-    x_lo, x_hi = b_phi[0] - pad_phi, b_phi[1] + pad_phi
-    y_lo, y_hi = max(b_d[0] - pad_d, 0.0), b_d[1] + pad_d
+    if view is None:
+        pad_phi = max(0.08 * (b_phi[1] - b_phi[0]), 0.05)
+        pad_d = max(0.12 * (b_d[1] - b_d[0]), 0.05 * b_d[1])
+        view = (b_phi[0] - pad_phi, b_phi[1] + pad_phi, max(b_d[0] - pad_d, 0.0),
+                b_d[1] + pad_d)
+        zoom = False
+    else:
+        zoom = True
+    x_lo, x_hi, y_lo, y_hi = view
     target = s["target"]
     xs, low = _tiled(phi, ds["region_low"].values, x_lo, x_hi, gaps=False)
     _, high = _tiled(phi, np.minimum(ds["region_high"].values, 1e6), x_lo, x_hi, gaps=False)
@@ -54,21 +61,25 @@ def _plane(ax, ds, s: dict) -> None:
                 label=latex_of(name) + (" (target)" if name == target else ""))
     ax.add_patch(_rectangle(b_phi, b_d))
     role = [str(r) for r in ds["role"].values]
-    pts = {r: [i for i, x in enumerate(role) if x == r] for r in set(role)}
     P = {a: ds[f"point_{a}"].values for a in ("d", "phi")}
-    sel = pts.get("screened", [])
+    sel = [i for i, r in enumerate(role) if r == "screened"]
     score = ds["score"].values[sel]
     dots = ax.scatter(P["phi"][sel], P["d"][sel], c=score, cmap="viridis", s=22,
                       vmin=min(float(score.min(initial=1.0)), 0.9), vmax=1.0, zorder=3,
                       edgecolors="0.2", linewidths=0.4, label="screened")
-    bar = ax.figure.colorbar(dots, ax=ax, pad=0.01, fraction=0.04)
-    bar.set_label(f"screened: score = target share - failed share ({ds.attrs['screen_n']} "
-                  "samples)", fontsize=8)
+    if zoom:
+        moved = [i for i, r in enumerate(role) if r == "perturbed"]
+        ax.plot(P["phi"][moved], P["d"][moved], "+", color="k", ms=8, zorder=4,
+                label="perturbed")
+    else:
+        bar = ax.figure.colorbar(dots, ax=ax, pad=0.01, fraction=0.04)
+        bar.set_label(f"screened: score = target share - failed share "
+                      f"({ds.attrs['screen_n']} samples)", fontsize=8)
     for k, p in enumerate(s["runners_up"]):
         ax.plot(p["phi"], p["d"], "s", color="#ff7f0e", mec="k", ms=7, zorder=4,
                 label="runners-up" if k == 0 else None)
         ax.annotate(str(k + 1), (p["phi"], p["d"]), textcoords="offset points",
-                    xytext=(5, 4), fontsize=8)
+                    xytext=(5, 4), fontsize=8, annotation_clip=True)
     if s["reference"]:
         r = s["reference"]
         ax.plot(r["phi"], r["d"], "D", color="w", mec="k", ms=8, zorder=4, label="reference")
@@ -79,10 +90,25 @@ def _plane(ax, ds, s: dict) -> None:
     ax.set_ylim(y_lo, y_hi)
     ax.set_xlabel(r"$\varphi$ (rad)")
     ax.set_ylabel("$d$")
+    if zoom:
+        ax.set_title("around the pick (+: perturbed points)", fontsize=9)
+        return
     ax.set_title("critical distances; shaded: target alone; dashed: search bounds",
                  fontsize=9)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0.0, -0.13), ncols=3,
               frameon=False)
+
+
+def _zoom_view(ds, best: dict) -> tuple[float, float, float, float]:
+    """A window around the pick: a few perturbation steps, and the region's edges at the
+    pick when they are near."""
+    m = best["margin"]
+    rel = float(ds.attrs["perturbation"]) * int(ds.attrs["perturbation_steps"])
+    half_phi = float(np.clip(1.6 * m["phi_to_boundary"], 4 * rel * np.pi, np.pi / 2))
+    edge = max(m["d_to_target"], m["d_to_boundary"])
+    half_d = float(np.clip(1.4 * edge, 4 * rel * best["d"], 0.5 * best["d"]))
+    return (best["phi"] - half_phi, best["phi"] + half_phi, best["d"] - half_d,
+            best["d"] + half_d)
 
 
 def _rectangle(b_phi, b_d):
@@ -149,17 +175,18 @@ def _robustness(ax, s: dict, relative: float) -> None:
     ax.set_xlabel(f"perturbation steps ({unit})", fontsize=8)
     ax.set_ylabel("target's basin stability")
     ax.set_title("one parameter at a time (x: target destroyed)", fontsize=9)
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(fontsize=7, loc="best")
 
 
 def plot_design(ds, out: str | Path) -> Path:
     plt = pyplot()
     s = design_summary(ds)
-    fig, axs = plt.subplots(1, 3, figsize=(15.5, 5.6), constrained_layout=True,
-                            gridspec_kw={"width_ratios": [1.5, 1.0, 1.0]})
+    fig, axs = plt.subplots(1, 4, figsize=(20.0, 5.8), constrained_layout=True,
+                            gridspec_kw={"width_ratios": [1.5, 0.9, 1.0, 1.0]})
     _plane(axs[0], ds, s)
-    _bars(axs[1], s)
-    _robustness(axs[2], s, float(ds.attrs["perturbation"]))
+    _plane(axs[1], ds, s, _zoom_view(ds, s["best"]))
+    _bars(axs[2], s)
+    _robustness(axs[3], s, float(ds.attrs["perturbation"]))
     b = s["best"]
     t0 = "random $t_0$" if ds.attrs.get("t0_mode") == "random" else \
         f"$t_0 = {float(ds.attrs.get('t0', 0.0)):.4g}$"
