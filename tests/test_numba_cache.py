@@ -17,7 +17,7 @@ if which == "pair":
 else:
     pr = Problem(get_system("duffing", 1), dict(c=0.05, k1=1, k2=0.01, F=1, w=1.3))
     classify_state(pr, [1.0, 0.0])
-stats = orbit.classify.stats
+stats = orbit.classify_near.stats  # what classify_state calls
 print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()))
 """
 
