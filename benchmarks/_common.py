@@ -53,6 +53,37 @@ path = "results/bench_basin.h5"
 """
 
 
+STABILITY_SCENE = """\
+# figure 14(c)-style basin stability: Duffing, phi = 5.28, d = 10.5, k_c = 8, c_c = 10
+[system]
+model = "duffing"
+
+[coupling]
+d = 10.5
+phi = 5.28
+k_c = 8.0
+c_c = 10.0
+
+[analysis]
+kind = "stability"
+
+[initial_conditions]
+kind = "random"
+box = {{ x1 = [-12.0, 12.0], v1 = [-12.0, 12.0], x2 = [-12.0, 12.0], v2 = [-12.0, 12.0] }}
+n = {n}
+seed = 15
+t0 = 0.0
+
+[output]
+path = "results/bench_stability.h5"
+"""
+
+
+def stability_scene(n: int):
+    """The figure 14(c)-style basin-stability scene with ``n`` samples."""
+    return parse_scene(STABILITY_SCENE.format(n=n), "<bench_stability>")
+
+
 def load() -> str:
     """The 1, 5 and 15 minute load averages, as text."""
     try:

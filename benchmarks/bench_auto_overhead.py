@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import os
 import sys
 import time
 from pathlib import Path
@@ -28,56 +27,13 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from softimpact_cli.config import parse_scene  # noqa: E402
+from _common import load, scene_at, stability_scene  # noqa: E402  (benchmarks/ on the path)
+
 from softimpact_cli.sweep.chunks import run_chunk  # noqa: E402
 from softimpact_cli.sweep.runner import prepare_catalogues, sweep_context  # noqa: E402
 
-BASIN = """
-[system]
-model = "duffing"
-[coupling]
-d = 6.0
-phi = 0.0
-k_c = 8.0
-c_c = 10.0
-[analysis]
-kind = "basins"
-[initial_conditions]
-kind = "plane"
-axes = ["x1", "x2"]
-ranges = [[-12.0, 12.0], [-12.0, 12.0]]
-resolution = [{side}, {side}]
-t0 = 0.0
-"""
 
-STABILITY = """
-[system]
-model = "duffing"
-[coupling]
-d = 10.5
-phi = 5.28
-k_c = 8.0
-c_c = 10.0
-[analysis]
-kind = "stability"
-[initial_conditions]
-kind = "random"
-box = {{ x1 = [-12.0, 12.0], v1 = [-12.0, 12.0], x2 = [-12.0, 12.0], v2 = [-12.0, 12.0] }}
-n = {n}
-seed = 15
-t0 = 0.0
-"""
-
-
-def load() -> str:
-    try:
-        return " ".join(f"{v:.2f}" for v in os.getloadavg())
-    except OSError:
-        return "n/a"
-
-
-def compare(name: str, text: str, repeats: int) -> str:
-    scene = parse_scene(text, f"<{name}>")
+def compare(name: str, scene, repeats: int) -> str:
     catalogues, names = prepare_catalogues(scene)
     base = sweep_context(scene, catalogues, names, None)
     n = base.grid.size * base.states.shape[0]
@@ -114,9 +70,9 @@ def main() -> None:
     args = ap.parse_args()
     lines = [f"load average at start {load()}"]
     print(lines[-1], flush=True)
-    for name, text in (("figure 6(d) basin", BASIN.format(side=args.side)),
-                       ("figure 14(c) stability", STABILITY.format(n=args.n))):
-        lines.append(compare(name, text, args.repeats))
+    for name, scene in (("figure 6(d) basin", scene_at(args.side)),
+                        ("figure 14(c) stability", stability_scene(args.n))):
+        lines.append(compare(name, scene, args.repeats))
         print(lines[-1], flush=True)
     lines.append(f"load average at end {load()}")
     print(lines[-1])

@@ -48,10 +48,10 @@ from _common import (  # the benchmarks folder is on sys.path when this script r
     load,
     machine,
     scene_at,
+    stability_scene,
 )
 
 from softimpact_cli.analysis.catalogue import label_orbit
-from softimpact_cli.config import parse_scene
 from softimpact_cli.engine import Problem, classify_state, flow
 from softimpact_cli.kernels import orbit as orbit_kernels
 from softimpact_cli.kernels.status import outcome
@@ -65,31 +65,6 @@ SCIPY_TRANSIENT = 300
 SCIPY_RECORD = 60  # recorded stroboscopic points after the transient
 SCIPY_REPEAT_TOL = 1e-5  # section points repeating to this (scaled), rtol 1e-8 integration
 MAX_ORBIT_PERIOD = 30
-
-STABILITY_SCENE = """\
-# figure 14(c)-style basin stability: Duffing, phi = 5.28, d = 10.5, k_c = 8, c_c = 10
-[system]
-model = "duffing"
-
-[coupling]
-d = 10.5
-phi = 5.28
-k_c = 8.0
-c_c = 10.0
-
-[analysis]
-kind = "stability"
-
-[initial_conditions]
-kind = "random"
-box = {{ x1 = [-12.0, 12.0], v1 = [-12.0, 12.0], x2 = [-12.0, 12.0], v2 = [-12.0, 12.0] }}
-n = {n}
-seed = 15
-t0 = 0.0
-
-[output]
-path = "results/bench_stability.h5"
-"""
 
 REFERENCE = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
                  max_periods=6000)
@@ -385,7 +360,7 @@ def rhs_floor(periods: int = 400, repeats: int = 5) -> str:
 
 
 def stability_run(n: int, tmp: Path) -> tuple[float, float, dict]:
-    scene = parse_scene(STABILITY_SCENE.format(n=n), "<bench_stability>")
+    scene = stability_scene(n)
     acc = {"phase": "other_kernels"}
     with phase_timer(acc):
         t = time.perf_counter()
