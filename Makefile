@@ -121,10 +121,11 @@ $(DESIGNS): $(STAMP)
 .PHONY: designs $(DESIGNS)
 
 # Speed, side by side in one run (figure 6(d) basin): softimpact vs the study's method vs
-# a scipy loop; plus basin-stability wall time and a profile. RES=200 for the full grid.
+# a scipy loop; plus basin-stability wall time and a profile. RES=500 BENCH_ARGS="--ref-sample 1000"
+# for the 500 x 500 target.
 RES ?= 100
 bench: $(STAMP)
-	$(PY) benchmarks/bench_basin.py --resolution $(RES)
+	$(PY) benchmarks/bench_basin.py --resolution $(RES) $(BENCH_ARGS)
 
 # Work-precision: error vs wall time of every integrator setting on a smooth trajectory,
 # trajectories through contacts and the figure 6(d) basin (results/bench/precision.md,
