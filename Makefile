@@ -5,8 +5,10 @@ PY := $(VENV)/bin/python
 SI := $(VENV)/bin/softimpact
 STAMP := $(VENV)/.installed-stamp
 PYTEST_ARGS ?=
+.DEFAULT_GOAL := help
 
-.PHONY: install test test-nojit demo trajectory lint clean bench bench-precision catalogues fig04 fig10 fig13-catalogue
+.PHONY: help install test test-fast test-nojit demo trajectory lint clean bench bench-precision \
+	catalogues fig04 fig10 fig13-catalogue
 
 install: $(STAMP)
 
@@ -18,6 +20,10 @@ $(STAMP): pyproject.toml
 
 test: $(STAMP)
 	$(PY) -m pytest $(PYTEST_ARGS)
+
+# The suite without the tests marked slow (a few minutes instead of ten).
+test-fast: $(STAMP)
+	$(PY) -m pytest -m "not slow" $(PYTEST_ARGS)
 
 # Pure-Python run of the kernels (slow): for debugging and coverage.
 test-nojit: $(STAMP)
@@ -33,24 +39,26 @@ trajectory: $(STAMP)
 	$(SI) sweep configs/trajectory_duffing.toml -o results/trajectory.h5 --overwrite
 	$(SI) plot trajectory results/trajectory.h5 -o results/trajectory.png
 
+# QUICK=1 runs every figure scene at low resolution (for CI; see softimpact sweep --help).
+QUICK ?=
+QUICKFLAG := $(if $(QUICK),--quick,)
+
 # Attractor catalogues (figures 4, 9-10 and 13's single body): HDF5 + PNG under results/.
 catalogues: fig04 fig10 fig13-catalogue
 
 fig04: $(STAMP)
-	$(SI) sweep configs/fig04_duffing_catalogue.toml -o results/fig04.h5 --overwrite
+	$(SI) sweep configs/fig04_duffing_catalogue.toml -o results/fig04.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot catalogue results/fig04.h5 -o results/fig04.png
 
 fig10: $(STAMP)
-	$(SI) sweep configs/fig10_bilinear_catalogue.toml -o results/fig10.h5 --overwrite
+	$(SI) sweep configs/fig10_bilinear_catalogue.toml -o results/fig10.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot catalogue results/fig10.h5 -o results/fig10.png
 
 fig13-catalogue: $(STAMP)
-	$(SI) sweep configs/fig13_bilinear_catalogue.toml -o results/fig13_catalogue.h5 --overwrite
+	$(SI) sweep configs/fig13_bilinear_catalogue.toml -o results/fig13_catalogue.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot catalogue results/fig13_catalogue.h5 -o results/fig13_catalogue.png
 
-# Basin figures (SPEC.md section 5). QUICK=1 runs every scene at low resolution (for CI).
-QUICK ?=
-QUICKFLAG := $(if $(QUICK),--quick,)
+# Basin figures (the study's section 5).
 BASIN_FIGS := fig03 fig06 fig09 fig12 fig13 fig14ab fig14cd
 FIGURES := $(BASIN_FIGS)
 
@@ -69,7 +77,7 @@ fig05: configs/figures/fig05_duffing_dcrit.toml
 fig11: configs/figures/fig11_bilinear_dcrit.toml
 
 $(DCRIT_FIGS): $(STAMP)
-	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite
+	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot dcrit results/$@.h5 -o results/$@.png
 
 STABILITY_FIGS := fig15a fig15b fig14c-t0 fig14c-random-t0
@@ -87,7 +95,8 @@ $(STABILITY_FIGS): $(STAMP)
 
 fig07: fig07-bifurcation fig07-basins
 fig07-bifurcation: $(STAMP)
-	$(SI) sweep configs/figures/fig07_duffing_bifurcation.toml -o results/fig07.h5 --overwrite
+	$(SI) sweep configs/figures/fig07_duffing_bifurcation.toml -o results/fig07.h5 --overwrite \
+		$(QUICKFLAG)
 	$(SI) plot bifurcation results/fig07.h5 -o results/fig07.png
 	$(SI) info results/fig07.h5
 fig07-basins: $(STAMP)
@@ -152,3 +161,21 @@ clean:
 
 # every figure of the study (defined last: FIGURES is complete only here)
 figures: catalogues $(FIGURES)
+
+# `make` alone (or `make help`) lists the targets (.DEFAULT_GOAL above).
+help:
+	@echo "softimpact make targets (each creates .venv and installs on first use):"
+	@echo "  demo              install, run configs/demo_basins.toml, plot results/demo.png"
+	@echo "  install           create .venv and install softimpact (with test and dask extras)"
+	@echo "  test              the whole test suite (PYTEST_ARGS=... passes options to pytest)"
+	@echo "  test-fast         the suite without the tests marked slow"
+	@echo "  test-nojit        the suite without numba compilation (slow; for debugging)"
+	@echo "  lint              ruff"
+	@echo "  trajectory        configs/trajectory_duffing.toml -> results/trajectory.{h5,png}"
+	@echo "  figures           every figure of the study (QUICK=1: low resolution, for CI)"
+	@echo "  catalogues fig03 fig04 fig05 fig06 fig07 fig09 fig10 fig11 fig12 fig13"
+	@echo "  fig13-catalogue fig14 fig14ab fig14cd fig14c-t0 fig14c-random-t0 fig15 fig15a"
+	@echo "  fig15b map-d-phi  one figure each (results/<target>.{h5,png}; QUICK=1 works too)"
+	@echo "  designs design-duffing design-bilinear   designing for one solution"
+	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"
+	@echo "  clean             remove .venv and caches"

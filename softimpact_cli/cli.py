@@ -102,7 +102,8 @@ def _scheduler(ctx, param, value):
               help="Trajectories per chunk (default: about 16 chunks per worker).")
 @click.option("-q", "--quiet", is_flag=True, help="No plan, no progress bar.")
 @click.option("--quick", is_flag=True,
-              help="Low resolution (planes <= 24 x 24, <= 100 samples) for previews and CI.")
+              help="Low resolution for previews and CI: planes <= 24 x 24, <= 100 samples, "
+                   "<= 6 values per swept grid axis, <= 64 dcrit phases, <= 50 d steps.")
 @click.option("--resolution", type=click.IntRange(min=1), default=None,
               help="Cap a plane's resolution per axis at N (previews, galleries).")
 @click.option("--strict", is_flag=True,
@@ -113,7 +114,29 @@ def _scheduler(ctx, param, value):
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
           resolution, strict, check_n):
-    """Run SCENE (a TOML file) and write its result to HDF5."""
+    """Run SCENE (a TOML file) and write its result to HDF5.
+
+    SCENE's [analysis] kind says what is computed:
+
+    \b
+      trajectory   one trajectory, recorded and classified
+      catalogue    the attractors of one body and the pair's combinations
+      basins       the label of every start on a plane, at every [grid] point
+      stability    basin stability: shares of random starts, 95% Wilson intervals
+      dcrit        critical distance d_crit(phi) of every combination
+      bifurcation  each solution followed along d, destruction points located
+      map          coexisting solutions over two parameters, predicted and found
+      design       (d, phi, k_c, c_c) where only the target survives (see design)
+
+    Example scenes: configs/ (demo, trajectory, catalogues, designs) and
+    configs/figures/ (every figure of the study); `softimpact example KIND` prints a
+    minimal commented scene of each kind.
+
+    \b
+    Examples:
+      softimpact sweep configs/demo_basins.toml -o results/demo.h5
+      softimpact sweep configs/fig04_duffing_catalogue.toml --quick
+    """
     from .config import SWEEP_KINDS
     from .config import quick as quick_scene
     from .run import run_scene
@@ -123,7 +146,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     if quick:
         sc = quick_scene(sc)
     if resolution:
-        sc = quick_scene(sc, plane=resolution, samples=10**12, flag=f"--resolution {resolution}")
+        sc = quick_scene(sc, plane=resolution, samples=10**12, flag=f"--resolution {resolution}",
+                         axis=None)
     out = Path(output) if output else sc.output
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)
@@ -191,7 +215,16 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
 @click.option("--quick", is_flag=True, help="At most 100 samples (previews and CI).")
 @_user_errors
 def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
-    """Choose (d, phi, k_c, c_c) so that only the target solution survives (design SCENE)."""
+    """Choose (d, phi, k_c, c_c) so that only the target solution survives (design SCENE).
+
+    SCENE must have [analysis] kind = "design" (the other kinds, listed in
+    `softimpact sweep --help`, run with sweep). Example scenes: configs/design_duffing.toml,
+    configs/design_bilinear.toml; `softimpact example design` prints a minimal one.
+
+    \b
+    Example:
+      softimpact design configs/design_duffing.toml --quick -o results/design_quick.h5
+    """
     from .config import quick as quick_scene
     from .config.design import with_target
 
@@ -246,6 +279,28 @@ def check(scene, sample, seed, as_json):
     except ValueError as exc:
         raise ConfigError(f"{scene}: {exc}") from None
     click.echo(json.dumps(report, indent=2) if as_json else _format_check(report))
+
+
+@main.command()
+@click.argument("kind", required=False)
+def example(kind):
+    """Print a minimal commented scene of analysis KIND (no KIND: list the kinds).
+
+    \b
+    Example:
+      softimpact example basins > my_basins.toml && softimpact sweep my_basins.toml
+    """
+    from .examples import EXAMPLES
+    from .examples import example as example_scene
+
+    if kind is None:
+        click.echo("kinds: " + ", ".join(EXAMPLES) + " (softimpact example KIND)")
+        return
+    if kind not in EXAMPLES:
+        click.echo(f"softimpact: error: example: unknown kind {kind!r}; kinds: "
+                   f"{', '.join(EXAMPLES)}", err=True)
+        sys.exit(2)
+    click.echo(example_scene(kind), nl=False)
 
 
 @main.group()

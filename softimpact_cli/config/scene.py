@@ -393,23 +393,51 @@ def _check_axis(system: System, axis: str, value: float) -> str | None:
 
 QUICK_PLANE = 24  # --quick: largest plane resolution per axis
 QUICK_SAMPLES = 100  # --quick: largest number of random samples
+QUICK_AXIS = 6  # --quick: largest number of values per swept grid axis (maps, sweeps)
+QUICK_PHIS = 64  # --quick: largest number of phases of a critical-distance curve
+QUICK_STEPS = 50  # --quick: largest number of d steps of a bifurcation diagram
+
+
+def _thin(values: tuple[float, ...], most: int) -> tuple[float, ...]:
+    """At most ``most`` of ``values``, evenly spread, the first and last always kept."""
+    if len(values) <= most:
+        return values
+    keep = np.unique(np.round(np.linspace(0, len(values) - 1, most)).astype(int))
+    return tuple(values[i] for i in keep)
 
 
 def quick(scene: Scene, plane: int = QUICK_PLANE, samples: int = QUICK_SAMPLES,
-          flag: str = "--quick") -> Scene:
+          flag: str = "--quick", axis: int | None = QUICK_AXIS) -> Scene:
     """The scene at lower resolution (CI, previews): planes at most ``plane`` per axis, at
-    most ``samples`` random samples. The stored scene text says so (its hash differs)."""
+    most ``samples`` random samples and, unless ``axis`` is None, at most ``axis`` values
+    per swept grid axis (endpoints kept; explicit panels stay), at most QUICK_PHIS phases
+    of a critical-distance curve and QUICK_STEPS steps of a bifurcation diagram. The stored
+    scene text says so (its hash differs)."""
     from dataclasses import replace
 
     ic = scene.initial_conditions
-    if ic is None:
-        return scene
-    if ic.kind == "plane":
+    if ic is not None and ic.kind == "plane":
         ic = replace(ic, resolution=tuple(min(r, plane) for r in ic.resolution))
-    elif ic.kind == "random":
+    elif ic is not None and ic.kind == "random":
         ic = replace(ic, n=min(ic.n, samples))
-    note = f"\n# {flag}: planes at most {plane} x {plane}, at most {samples} random samples\n"
-    return replace(scene, initial_conditions=ic, text=scene.text + note)
+    grid, analysis = scene.grid, scene.analysis
+    note = f"planes at most {plane} x {plane}, at most {samples} random samples"
+    if axis is not None:
+        note += f", at most {axis} values per swept grid axis"
+        if grid is not None and not grid.panels and analysis.kind in SWEEP_KINDS:
+            grid = replace(grid, axes={a: _thin(v, axis) if a in grid.swept else v
+                                       for a, v in grid.axes.items()})
+        if analysis.kind == "dcrit":
+            analysis = replace(analysis, phis=_thin(analysis.phis, QUICK_PHIS))
+            note += f", at most {QUICK_PHIS} phases"
+        elif analysis.kind == "bifurcation":
+            span = abs(analysis.stop - analysis.start)
+            analysis = replace(analysis, step=max(analysis.step, span / QUICK_STEPS))
+            note += f", at most {QUICK_STEPS} steps in d"
+    if ic is scene.initial_conditions and grid is scene.grid and analysis is scene.analysis:
+        return scene
+    return replace(scene, initial_conditions=ic, grid=grid, analysis=analysis,
+                   text=scene.text + f"\n# {flag}: {note}\n")
 
 
 def load_scene(path: str | os.PathLike) -> Scene:

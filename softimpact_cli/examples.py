@@ -1,0 +1,177 @@
+"""Minimal commented scenes, one per analysis kind (``softimpact example KIND``).
+
+Each is a complete scene (TOML text) that ``parse_scene`` accepts and that runs as it stands;
+the larger ones say how long they take. The full figure scenes are in configs/figures/.
+"""
+
+from __future__ import annotations
+
+_COMMON = """\
+# Every key not given takes its default (README: "Running a scene"); unknown keys are errors.
+# Run: softimpact sweep THIS_FILE.toml   (then: softimpact info / softimpact plot {plot} ...)
+"""
+
+_PAIR = """\
+[system]
+model = "duffing"          # "duffing" | "bilinear"; c, k1, k2, F, w default to the study's
+
+[coupling]                 # the stop between the bodies (bodies = 2, the default)
+d = 6.0                    # gap: contact while x1 - x2 >= d
+phi = "5*pi/8"             # phase of the right body's forcing: a number or "a*pi/b"
+k_c = 8.0                  # stop stiffness
+c_c = 10.0                 # stop damping
+"""
+
+EXAMPLES: dict[str, str] = {
+    "trajectory": _PAIR + """
+[analysis]
+kind = "trajectory"        # one trajectory, recorded and classified (about a second)
+state = [8.0, 0.0, -4.0, 0.0]   # x1, v1, x2, v2 at t0
+periods = 60               # forcing periods integrated
+t0 = 0.0                   # start time: a number or "T/4", "3*T/4"
+
+[output]
+path = "results/example_trajectory.h5"
+""",
+    "catalogue": """\
+[system]
+model = "duffing"
+bodies = 2                 # the pair: the right body's attractors follow from the left's
+
+[coupling]
+phi = 0.0                  # the combinations' joint orbits are listed at this phase
+
+[analysis]
+kind = "catalogue"         # attractors of one body, refined by Newton (seconds)
+box = { x = [-12.0, 12.0], v = [-12.0, 12.0] }   # where the starts are drawn
+grid = 4                   # a grid x grid lattice of starts ...
+random = 20                # ... plus this many random starts
+seed = 1
+
+[output]
+path = "results/example_catalogue.h5"
+""",
+    "basins": _PAIR + """
+[analysis]
+kind = "basins"            # label every start of a plane (about 10 s at 40 x 40)
+
+[grid]                     # optional: any of d, phi, k_c, c_c, t0 (one panel per point)
+d = [6.0, 10.0]
+
+[initial_conditions]
+kind = "plane"
+axes = ["x1", "x2"]        # the other state variables are 0 (or set them in fixed)
+ranges = [[-12.0, 12.0], [-12.0, 12.0]]
+resolution = [40, 40]
+
+[catalogue]                # how the labels' attractors are searched
+grid = 8
+random = 50
+
+[output]
+path = "results/example_basins.h5"
+""",
+    "stability": _PAIR + """
+[analysis]
+kind = "stability"         # basin stability: shares of random starts per solution
+
+[grid]
+c_c = { start = 2.0, stop = 10.0, num = 3 }   # the parameter the shares are plotted against
+
+[initial_conditions]
+kind = "random"
+box = { x1 = [-12.0, 12.0], v1 = [-12.0, 12.0], x2 = [-12.0, 12.0], v2 = [-12.0, 12.0] }
+n = 200                    # samples per grid point (95% Wilson intervals in the result)
+seed = 15
+t0 = 0.0                   # or "random": the forcing phase sampled too
+
+[output]
+path = "results/example_stability.h5"
+""",
+    "dcrit": """\
+[system]
+model = "duffing"
+
+[analysis]
+kind = "dcrit"             # d_crit(phi) of every combination (seconds)
+traces = ["pi/4"]          # also store x1 - x2 over one period at these phases
+
+[grid]
+phi = { start = 0.0, stop = "63*pi/32", num = 64 }   # default: 256 phases over [0, 2 pi)
+
+[output]
+path = "results/example_dcrit.h5"
+""",
+    "bifurcation": """\
+[system]
+model = "duffing"
+
+[coupling]
+phi = "5*pi/8"
+k_c = 8.0
+c_c = 20.0
+
+[analysis]
+kind = "bifurcation"       # follow each non-impacting solution as d decreases (seconds)
+start = 22.0
+stop = 4.0
+step = 0.5
+# branches = ["L1^1 R1-0^1"]   # default: every combination of the catalogue
+
+[output]
+path = "results/example_bifurcation.h5"
+""",
+    "map": """\
+[system]
+model = "duffing"
+
+[coupling]
+k_c = 8.0
+c_c = 10.0
+
+[analysis]
+kind = "map"               # coexisting solutions over two parameters: predicted and found
+
+[grid]                     # two of d, phi, k_c, c_c
+d = { start = 2.0, stop = 22.0, num = 6 }
+phi = { start = 0.0, stop = "5*pi/3", num = 6 }
+
+[initial_conditions]
+kind = "random"
+box = { x1 = [-12.0, 12.0], v1 = [-12.0, 12.0], x2 = [-12.0, 12.0], v2 = [-12.0, 12.0] }
+n = 50                     # samples per grid point
+seed = 3
+
+[output]
+path = "results/example_map.h5"
+""",
+    "design": """\
+[system]
+model = "duffing"
+
+[analysis]
+kind = "design"            # choose (d, phi, k_c, c_c) so that only the target survives
+target = "L1^1 R1-0^1"     # a non-impacting combination of the catalogue
+bounds = { d = [3.0, 12.0], phi = [0.0, "2*pi"], k_c = [2.0, 20.0], c_c = [1.0, 20.0] }
+candidates = 8             # points screened inside the region
+screen_n = 50              # samples per screened point
+refine = 2                 # best screened points verified on all n samples
+seed = 0
+
+[initial_conditions]       # the basin-stability samples: kind = "random" only
+kind = "random"
+box = { x1 = [-12.0, 12.0], v1 = [-12.0, 12.0], x2 = [-12.0, 12.0], v2 = [-12.0, 12.0] }
+n = 100
+seed = 15
+
+[output]
+path = "results/example_design.h5"
+""",
+}
+
+def example(kind: str) -> str:
+    """The commented example scene of analysis ``kind`` (KeyError if there is none)."""
+    header = _COMMON.format(plot=kind)
+    if kind == "design":
+        header = header.replace("softimpact sweep", "softimpact design")
+    return header + EXAMPLES[kind]
