@@ -9,8 +9,16 @@ from pathlib import Path
 import numpy as np
 
 from ..info import GRID_AXES, grid_dims, grid_point
-from . import (DEFAULT_DPI, multiple_text, new_figure, panel_letter, parameter_text,
-               phase_text, save, start_text)
+from . import (
+    DEFAULT_DPI,
+    multiple_text,
+    new_figure,
+    panel_letter,
+    parameter_text,
+    phase_text,
+    save,
+    start_text,
+)
 from .palette import colour_of, solution_order
 
 SYMBOLS = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "t0": "t_0"}
