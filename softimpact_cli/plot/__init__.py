@@ -137,3 +137,15 @@ def pyplot():
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
+    """Ticks of a phase axis (``ax.xaxis`` or ``ax.yaxis``) at multiples of pi/4, pi/2 or
+    pi between ``lo`` and ``hi``, labelled as such (``3\\pi/4``)."""
+    import numpy as np
+
+    for step in (np.pi / 8, np.pi / 4, np.pi / 2, np.pi, 2 * np.pi):
+        ticks = np.arange(np.ceil(lo / step - 1e-9), np.floor(hi / step + 1e-9) + 1) * step
+        if len(ticks) <= max_ticks:
+            break
+    axis.set_ticks(ticks, [f"${multiple_text(t)}$" for t in ticks])
