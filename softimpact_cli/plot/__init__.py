@@ -140,12 +140,18 @@ def pyplot():
 
 
 def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
-    """Ticks of a phase axis (``ax.xaxis`` or ``ax.yaxis``) at multiples of pi/4, pi/2 or
-    pi between ``lo`` and ``hi``, labelled as such (``3\\pi/4``)."""
+    """Ticks of a phase axis (``ax.xaxis`` or ``ax.yaxis``) at multiples of pi/8 ... 2 pi
+    between ``lo`` and ``hi``, labelled as such (``3\\pi/4``); on a window too narrow
+    for three of them, the default ticks labelled as decimal multiples of pi."""
     import numpy as np
+    from matplotlib.ticker import FuncFormatter
 
     for step in (np.pi / 8, np.pi / 4, np.pi / 2, np.pi, 2 * np.pi):
         ticks = np.arange(np.ceil(lo / step - 1e-9), np.floor(hi / step + 1e-9) + 1) * step
         if len(ticks) <= max_ticks:
             break
-    axis.set_ticks(ticks, [f"${multiple_text(t)}$" for t in ticks])
+    if len(ticks) >= 3:
+        axis.set_ticks(ticks, [f"${multiple_text(t)}$" for t in ticks])
+    else:
+        axis.set_major_formatter(FuncFormatter(
+            lambda x, _: "0" if x == 0 else f"${x / np.pi:.4g}\\pi$"))

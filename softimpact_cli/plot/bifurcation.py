@@ -51,15 +51,25 @@ def draw_bifurcation(ds):
     groups: dict[tuple[str, str], list[int]] = {}
     for (i, j), key in styles.items():
         groups.setdefault(key, []).append(i * len(d) + j)
+    drawn = [n for n in order if ("solution", n) in groups]
+
+    def rank(key):
+        kind, name = key
+        return (kind == "solution", drawn.index(name) if name in drawn else 0)
+
     for ax, var in zip(axs, ("section_x1", "section_x2"), strict=True):
         pts = ds[var].values.reshape(len(names) * len(d), -1)  # (branch * d, point)
         dd = np.tile(d, len(names))
-        for (kind, name), rows in sorted(groups.items()):
+        for (kind, name), rows in sorted(groups.items(), key=lambda g: rank(g[0])):
             y = pts[rows]
             x = np.repeat(dd[rows][:, None], y.shape[1], axis=1)
             ok = np.isfinite(y)
             if kind == "solution":
-                ax.plot(x[ok], y[ok], ".", ms=3.5, color=colour_of(name, order), zorder=3)
+                # solutions that share a body's state (L1^1 R^1 and L1^1 R^2 on the left)
+                # lie on one another: concentric dots, the first in catalogue order largest
+                size = 3.0 + 1.5 * (len(drawn) - 1 - drawn.index(name))
+                ax.plot(x[ok], y[ok], "o", ms=size, mew=0, color=colour_of(name, order),
+                        zorder=3)
             elif kind == "impacting":
                 ax.plot(x[ok], y[ok], "x", ms=3.5, color=IMPACTING, alpha=0.8, zorder=2)
             else:

@@ -57,11 +57,11 @@ def test_a_point_takes_the_colour_of_the_solution_it_is_on():
     left = drawn_points(fig.axes[0])
     blue, orange = colour_of(NAMES[0], NAMES), colour_of(NAMES[1], NAMES)
     # branch 1 before destruction: its own colour
-    assert left[(6.0, -6.0)] == {(orange, ".")}
+    assert left[(6.0, -6.0)] == {(orange, "o")}
     # after falling onto branch 0's solution it is drawn in that solution's colour: the
     # fallen branch no longer hides the solution it fell to under its own colour
-    assert left[(2.0, -0.2)] == {(blue, ".")}
-    assert left[(1.0, -0.2)] == {(blue, ".")} | {c for c in left[(1.0, -0.2)] if c[1] == "+"}
+    assert left[(2.0, -0.2)] == {(blue, "o")}
+    assert left[(1.0, -0.2)] == {(blue, "o")} | {c for c in left[(1.0, -0.2)] if c[1] == "+"}
     # impacting and unresolved states have their own styles
     assert left[(3.0, -7.0)] == {(IMPACTING, "x")}
     assert ("+" in {m for _, m in left[(1.0, -0.2)]})
