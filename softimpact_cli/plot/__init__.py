@@ -97,6 +97,28 @@ def start_text(ds, index=None) -> str:
     return f"$t_0 = {multiple_text(fraction, 'T', 1.0)}$"
 
 
+def wrap_tex(text: str, width: int) -> str:
+    """``text`` in lines of about ``width`` visible characters, broken only after ', '
+    or '; ' (never inside a $...$ formula), existing line breaks kept."""
+    import re
+
+    def visible(part: str) -> int:
+        return len(re.sub(r"\\[a-zA-Z]+", "x", re.sub(r"[${}_^]", "", part)))
+
+    lines = []
+    for paragraph in text.split("\n"):
+        line = ""
+        for token in re.split(r"(?<=[,;]) ", paragraph):
+            if line and visible(line) + 1 + visible(token) > width and \
+                    line.count("$") % 2 == 0:
+                lines.append(line)
+                line = token
+            else:
+                line = f"{line} {token}" if line else token
+        lines.append(line)
+    return "\n".join(lines)
+
+
 def panel_letter(ax, k: int, fontsize: int = 11) -> None:
     """(a), (b), ... at the top left of a panel, outside the data."""
     ax.text(-0.02, 1.02, f"({chr(ord('a') + k)})", transform=ax.transAxes, ha="right",

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import textwrap
 from math import ceil
 from pathlib import Path
 
@@ -18,6 +17,7 @@ from . import (
     phase_text,
     save,
     start_text,
+    wrap_tex,
 )
 from .palette import colour_of, solution_order
 
@@ -84,7 +84,8 @@ def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) 
     head = (f"{ds.attrs.get('model')} {'pair' if pair else 'body'}: basins on "
             f"$({AXIS_SYMBOLS.get(a0, a0)}, {AXIS_SYMBOLS.get(a1, a1)})$"
             + (f", {fixed}" if fixed else "")
-            + f"; {shape[0]} x {shape[1]} initial conditions per panel")
+            + f"; {shape[0]} x {shape[1]} initial conditions"
+            + (" per panel" if n_panels > 1 else ""))
     T = float(ds.attrs["forcing_period"])
     common = []
     if n_panels and "t0" not in varying:
@@ -176,18 +177,14 @@ def draw_basins(ds, max_panels: int = 36):
     for k in range(n_panels, nrows * ncols):
         axs[k // ncols, k % ncols].axis("off")
     head = figure_title(ds, varying, (len(x), len(y)), n_panels)
-    note = (f"markers: each attractor's points at $t = t_0 + nT$ projected on "
-            f"$({AXIS_SYMBOLS.get(a0, a0)}, {AXIS_SYMBOLS.get(a1, a1)})$, in its basin's "
-            f"colour; legend: basin colour, attractor marker, share of the plane")
+    note = ("markers: each attractor's points at $t = t_0 + nT$, in its basin's colour; "
+            "legend: basin, attractor, share of the plane")
     if n_panels == 1:
         title = panel_title(ds, (0,) * len(grid_shape), varying)
         head = head.replace("\n", (", " + title if title else "") + "\n", 1)
-    lines = [*head.split("\n")[:1], *textwrap.wrap(head.split("\n", 1)[1], 90 * ncols),
-             note]
-    if n_panels == 1:
-        axs[0, 0].set_title("\n".join(lines), fontsize=8)
+        axs[0, 0].set_title(wrap_tex(f"{head}\n{note}", 75), fontsize=8)
     else:
-        fig.suptitle("\n".join(lines), fontsize=9)
+        fig.suptitle(wrap_tex(f"{head}\n{note}", 100 * ncols), fontsize=9)
     return fig
 
 

@@ -67,7 +67,7 @@ def draw_bifurcation(ds):
             if kind == "solution":
                 # solutions that share a body's state (L1^1 R^1 and L1^1 R^2 on the left)
                 # lie on one another: concentric dots, the first in catalogue order largest
-                size = 3.0 + 1.5 * (len(drawn) - 1 - drawn.index(name))
+                size = 2.5 + 1.3 * (len(drawn) - 1 - drawn.index(name))
                 ax.plot(x[ok], y[ok], "o", ms=size, mew=0, color=colour_of(name, order),
                         zorder=3)
             elif kind == "impacting":
