@@ -148,19 +148,6 @@ def parameter_text(ds, exclude=()) -> str:
     return ", ".join(parts)
 
 
-def pyplot():
-    """matplotlib.pyplot, on Agg only when there is no display (scripts, CI)."""
-    import os
-
-    import matplotlib
-
-    if not os.environ.get("DISPLAY") and not os.environ.get("MPLBACKEND"):
-        matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
     """Ticks of a phase axis (``ax.xaxis`` or ``ax.yaxis``) at multiples of pi/8 ... 2 pi
     between ``lo`` and ``hi``, labelled as such (``3\\pi/4``); on a window too narrow
