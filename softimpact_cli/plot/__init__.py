@@ -11,6 +11,8 @@ import math
 from fractions import Fraction
 from pathlib import Path
 
+import numpy as np
+
 DEFAULT_DPI = 150
 # TeX symbols of the parameters named in a result's ``parameters`` attribute
 PARAMETER_TEX = {"c": "c", "k1": "k_1", "k2": "k_2", "F": "F", "w": r"\omega", "d": "d",
@@ -63,27 +65,23 @@ def phase_text(phi: float) -> str:
 
 def start_time(ds, index=None) -> tuple[str, float | None]:
     """(mode, t0/T) of a result: mode 'fixed', 'grid' or 'random'; t0/T for 'fixed' (at
-    the grid point ``index`` of a sweep when given) else None. Reads, in order, the global
-    attributes ``t0_over_T`` / ``t0``, a ``t0`` coordinate, else assumes 0."""
+    the grid point ``index`` of a sweep when given) else None. Reads, in order: the mode;
+    a ``t0`` coordinate that varies over the grid; the global attribute ``t0_over_T``; a
+    constant ``t0`` coordinate; the global attribute ``t0`` (time); else 0."""
     T = float(ds.attrs.get("forcing_period", 1.0))
     mode = str(ds.attrs.get("t0_mode", "fixed"))
     if mode == "random":
         return mode, None
-    if "t0" in ds.coords or "t0" in ds:
-        values = ds["t0"].values
-        if index is not None and values.ndim and values.size > 1:
-            try:
-                return "fixed", float(values[index]) / T
-            except (IndexError, TypeError):
-                pass
-        flat = values.ravel()
-        if flat.size and (flat == flat[0]).all():
-            return "fixed", float(flat[0]) / T
+    values = ds["t0"].values if "t0" in ds.coords or "t0" in ds.data_vars else None
+    varies = values is not None and values.size > 1 and bool(np.ptp(values) > 0)
+    if varies and index is not None and values.ndim == len(index):
+        return "fixed", float(values[tuple(index)]) / T
+    if mode == "grid" or varies:
         return "grid", None
-    if mode == "grid":
-        return mode, None
     if "t0_over_T" in ds.attrs:
         return "fixed", float(ds.attrs["t0_over_T"])
+    if values is not None and values.size:
+        return "fixed", float(values.ravel()[0]) / T
     return "fixed", float(ds.attrs.get("t0", 0.0)) / T
 
 
@@ -152,7 +150,6 @@ def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
     """Ticks of a phase axis (``ax.xaxis`` or ``ax.yaxis``) at multiples of pi/8 ... 2 pi
     between ``lo`` and ``hi``, labelled as such (``3\\pi/4``); on a window too narrow
     for three of them, the default ticks labelled as decimal multiples of pi."""
-    import numpy as np
     from matplotlib.ticker import FuncFormatter
 
     for step in (np.pi / 8, np.pi / 4, np.pi / 2, np.pi, 2 * np.pi):

@@ -51,8 +51,8 @@ def varying_axes(ds, always=("d", "phi")) -> list[str]:
     points = [grid_point(ds, index) for index in np.ndindex(*shape)]
     out = []
     for a in GRID_AXES:
-        if a in ("d", "phi") and int(ds.attrs.get("bodies", 2)) == 1:
-            continue
+        if a != "t0" and int(ds.attrs.get("bodies", 2)) == 1:
+            continue  # one body: no coupling
         values = {str(p[a]) for p in points}
         if len(values) > 1 or (a in always and a != "t0"):
             out.append(a)
@@ -92,7 +92,7 @@ def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) 
         common.append(start_text(ds, (0,) * len(grid_dims(ds))))
     first = grid_point(ds, (0,) * len(grid_dims(ds)))
     for a in ("d", "phi", "k_c", "c_c"):
-        if a in varying or (a in ("d", "phi") and not pair):
+        if a in varying or not pair:
             continue
         common.append(f"${SYMBOLS[a]} = {axis_value_text(a, first[a], T)}$")
     params = parameter_text(ds, exclude=("d", "phi", "k_c", "c_c"))

@@ -61,3 +61,18 @@ def test_parameter_text_in_tex_with_phi_in_pi():
     ds = ds_with(parameters=f"c=0.05, w=1.3, phi={0.573 * math.pi!r}, k_c=8.0, law=paper")
     text = parameter_text(ds, exclude=("k_c",))
     assert text == r"$c = 0.05$, $\omega = 1.3$, $\varphi = 0.573\pi$"
+
+
+def test_the_recorded_start_time_wins_over_a_stale_coordinate():
+    # the store records the t0 actually used as global attributes (issue 20, defect 3)
+    sweep = xr.Dataset(coords={"t0": ("panel", [0.0, 0.0])},
+                       attrs={"forcing_period": 4.0, "t0_mode": "fixed", "t0": 2.0,
+                              "t0_over_T": 0.5})
+    assert start_text(sweep) == "$t_0 = T/2$"
+
+
+def test_a_start_time_that_differs_between_panels_is_read_per_panel():
+    panels = xr.Dataset(coords={"t0": ("panel", [0.0, 1.0])},
+                        attrs={"forcing_period": 4.0, "t0_mode": "fixed"})
+    assert start_text(panels, (1,)) == "$t_0 = T/4$"
+    assert start_text(panels) == "$t_0$ swept"
