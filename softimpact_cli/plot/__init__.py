@@ -149,8 +149,8 @@ def parameter_text(ds, exclude=()) -> str:
 def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
     """Ticks of a phase axis (``ax.xaxis`` or ``ax.yaxis``) at multiples of pi/8 ... 2 pi
     between ``lo`` and ``hi``, labelled as such (``3\\pi/4``); on a window too narrow
-    for three of them, the default ticks labelled as decimal multiples of pi."""
-    from matplotlib.ticker import FuncFormatter
+    for three of them, at round decimal multiples of pi (``0.32\\pi``)."""
+    from matplotlib.ticker import FuncFormatter, MultipleLocator
 
     for step in (np.pi / 8, np.pi / 4, np.pi / 2, np.pi, 2 * np.pi):
         ticks = np.arange(np.ceil(lo / step - 1e-9), np.floor(hi / step + 1e-9) + 1) * step
@@ -158,6 +158,12 @@ def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
             break
     if len(ticks) >= 3:
         axis.set_ticks(ticks, [f"${multiple_text(t)}$" for t in ticks])
-    else:
-        axis.set_major_formatter(FuncFormatter(
-            lambda x, _: "0" if x == 0 else f"${x / np.pi:.4g}\\pi$"))
+        return
+    # a narrow window: round decimal multiples of pi (0.32 pi, 0.34 pi, ...)
+    raw = (hi - lo) / np.pi / 5
+    mag = 10.0 ** np.floor(np.log10(raw)) if raw > 0 else 0.01
+    step = next(k * mag for k in (1, 2, 5, 10) if k * mag >= raw)
+    digits = max(0, -int(np.floor(np.log10(step))))
+    axis.set_major_locator(MultipleLocator(step * np.pi))
+    axis.set_major_formatter(FuncFormatter(
+        lambda x, _: "0" if abs(x) < 1e-12 else f"${x / np.pi:.{digits}f}\\pi$"))

@@ -76,3 +76,20 @@ def test_a_start_time_that_differs_between_panels_is_read_per_panel():
                         attrs={"forcing_period": 4.0, "t0_mode": "fixed"})
     assert start_text(panels, (1,)) == "$t_0 = T/4$"
     assert start_text(panels) == "$t_0$ swept"
+
+
+@pytest.mark.parametrize("lo, hi, expected", [
+    (0.0, 2 * np.pi, [r"$\pi/2$", r"$\pi$", r"$2\pi$"]),
+    (3.0, 4.0, [r"$\pi$", r"$9\pi/8$", r"$5\pi/4$"]),
+    (1.0, 1.2, [r"$0.32\pi$", r"$0.34\pi$"]),  # a zoom: decimal multiples, still of pi
+])
+def test_phase_axis_ticks_are_multiples_of_pi(lo, hi, expected):
+    from softimpact_cli.plot import new_figure, pi_ticks
+
+    fig = new_figure()
+    ax = fig.subplots()
+    ax.plot([lo, hi], [0, 1])
+    pi_ticks(ax.xaxis, lo, hi)
+    fig.canvas.draw()
+    labels = [t.get_text() for t in ax.get_xticklabels()]
+    assert set(expected) <= set(labels)
