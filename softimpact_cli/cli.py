@@ -308,6 +308,10 @@ def plot():
     """Draw figures from result files."""
 
 
+_dpi_option = click.option("--dpi", type=click.IntRange(min=10, max=2400), default=150,
+                           show_default=True, help="Resolution of raster figures (PNG).")
+
+
 def _draw(result: str, output: str, kind: str, draw, complete: bool = False,
           accept=None, expected: str | None = None) -> None:
     """Open RESULT, check that it holds a ``kind`` analysis (or passes ``accept``, a
@@ -328,28 +332,30 @@ def _draw(result: str, output: str, kind: str, draw, complete: bool = False,
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @click.option("--last-periods", type=click.IntRange(min=1), default=None,
               help="Periods drawn strongly as the steady state (default: a quarter, <= 20).")
 @_user_errors
-def plot_trajectory_cmd(result, output, last_periods):
+def plot_trajectory_cmd(result, output, dpi, last_periods):
     """Time series, phase portraits and Poincare points of a trajectory RESULT."""
     from .plot.trajectory import plot_trajectory
 
-    _draw(result, output, "trajectory", lambda ds: plot_trajectory(ds, output, last_periods))
+    _draw(result, output, "trajectory", lambda ds: plot_trajectory(ds, output, last_periods, dpi))
 
 
 @plot.command("basins")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @click.option("--max-panels", type=click.IntRange(min=1), default=36, show_default=True,
               help="Largest number of grid points drawn as panels.")
 @_user_errors
-def plot_basins_cmd(result, output, max_panels):
+def plot_basins_cmd(result, output, dpi, max_panels):
     """Basins of attraction of a plane sweep RESULT, one panel per grid point."""
     from .plot.basins import plot_basins
 
-    _draw(result, output, "basins", lambda ds: plot_basins(ds, output, max_panels),
+    _draw(result, output, "basins", lambda ds: plot_basins(ds, output, max_panels, dpi),
           complete=True, accept=lambda a: a.get("ic_kind") == "plane",
           expected="a complete sweep over a plane of initial conditions")
 
@@ -358,10 +364,11 @@ def plot_basins_cmd(result, output, max_panels):
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @click.option("--combination", default=None,
               help="Draw only this combination's x1 - x2 traces (default: all).")
 @_user_errors
-def plot_dcrit_cmd(result, output, combination):
+def plot_dcrit_cmd(result, output, dpi, combination):
     """Critical-distance curves, surviving-combination regions and x1 - x2 traces."""
     from .plot.dcrit import plot_dcrit
 
@@ -370,7 +377,7 @@ def plot_dcrit_cmd(result, output, combination):
         if combination is not None and combination not in names:
             raise ConfigError(f"--combination: {combination!r} is not one of "
                               f"{', '.join(names)}")
-        return plot_dcrit(ds, output, combination)
+        return plot_dcrit(ds, output, combination, dpi)
 
     _draw(result, output, "dcrit", draw)
 
@@ -379,10 +386,11 @@ def plot_dcrit_cmd(result, output, combination):
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @click.option("--against", type=click.Choice(["d", "phi", "k_c", "c_c", "t0"]), default=None,
               help="Grid axis on the horizontal axis (default: the swept one).")
 @_user_errors
-def plot_stability_cmd(result, output, against):
+def plot_stability_cmd(result, output, dpi, against):
     """Basin-stability curves with 95% Wilson bands of a stability RESULT."""
     from .analysis.stability import basin_stability
     from .plot.stability import plot_stability
@@ -390,7 +398,7 @@ def plot_stability_cmd(result, output, against):
     def draw(ds):
         swept = str(ds.attrs.get("grid_swept", "")).split()
         axis = against or (swept[0] if swept else "c_c")
-        return plot_stability(ds, basin_stability(ds), output, axis)
+        return plot_stability(ds, basin_stability(ds), output, axis, dpi)
 
     _draw(result, output, "stability", draw, complete=True)
 
@@ -399,49 +407,53 @@ def plot_stability_cmd(result, output, against):
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @_user_errors
-def plot_bifurcation_cmd(result, output):
+def plot_bifurcation_cmd(result, output, dpi):
     """Section displacements of both bodies against d, destruction points marked."""
     from .plot.bifurcation import plot_bifurcation
 
-    _draw(result, output, "bifurcation", lambda ds: plot_bifurcation(ds, output))
+    _draw(result, output, "bifurcation", lambda ds: plot_bifurcation(ds, output, dpi))
 
 
 @plot.command("map")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @_user_errors
-def plot_map_cmd(result, output):
+def plot_map_cmd(result, output, dpi):
     """Predicted and found numbers of coexisting solutions over two parameters."""
     from .plot.maps import plot_map
 
-    _draw(result, output, "map", lambda ds: plot_map(ds, output), complete=True)
+    _draw(result, output, "map", lambda ds: plot_map(ds, output, dpi), complete=True)
 
 
 @plot.command("design")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @_user_errors
-def plot_design_cmd(result, output):
+def plot_design_cmd(result, output, dpi):
     """The (d, phi) plane with the target-only region, the pick and runners-up, beside
     the basin stability at the pick and under perturbations."""
     from .plot.design import plot_design
 
-    _draw(result, output, "design", lambda ds: plot_design(ds, output))
+    _draw(result, output, "design", lambda ds: plot_design(ds, output, dpi))
 
 
 @plot.command("catalogue")
 @click.argument("result", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Figure file (.png, .pdf, .svg).")
+@_dpi_option
 @_user_errors
-def plot_catalogue_cmd(result, output):
+def plot_catalogue_cmd(result, output, dpi):
     """Attractors on the phase plane and one panel per combination of a catalogue RESULT."""
     from .plot.catalogue import plot_catalogue
 
-    _draw(result, output, "catalogue", lambda ds: plot_catalogue(ds, output))
+    _draw(result, output, "catalogue", lambda ds: plot_catalogue(ds, output, dpi))
 
 
 @main.command()

@@ -7,43 +7,105 @@ from pathlib import Path
 
 import numpy as np
 
-from ..expressions import format_multiple
 from ..info import GRID_AXES, grid_dims, grid_point
-from . import parameter_text, pyplot
+from . import (
+    DEFAULT_DPI,
+    multiple_text,
+    new_figure,
+    panel_letter,
+    parameter_text,
+    phase_text,
+    save,
+    start_text,
+    wrap_tex,
+)
 from .palette import colour_of, solution_order
 
 SYMBOLS = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "t0": "t_0"}
 AXIS_SYMBOLS = {"x1": "x_1", "x2": "x_2", "v1": r"\dot x_1", "v2": r"\dot x_2", "x": "x",
                 "v": r"\dot x"}
+# an attractor's section points: its basin's colour inside a black ring and a white
+# halo, so they read on any basin (a dot of the basin's own colour read as a hole)
+MARKER = {"marker": "o", "ms": 7, "mec": "k", "mew": 1.4, "ls": ""}
 
 
-def panel_title(ds, index: tuple[int, ...], always=("d", "phi")) -> str:
-    """Parameters of one grid point: the swept ones and d, phi (t0 as a fraction of T)."""
-    swept = str(ds.attrs.get("grid_swept", "")).split()
+def _halo():
+    from matplotlib import patheffects
+
+    return [patheffects.withStroke(linewidth=3.5, foreground="w")]
+
+
+def axis_value_text(axis: str, value: float, T: float) -> str:
+    """TeX text of one grid value: phi in multiples of pi, t0 in multiples of T."""
+    if axis == "phi":
+        return phase_text(value)
+    if axis == "t0":
+        return multiple_text(value / T, "T", 1.0)
+    return f"{value:.6g}"
+
+
+def varying_axes(ds, always=("d", "phi")) -> list[str]:
+    """Grid axes whose value differs between panels (pairs: d and phi always)."""
+    dims = grid_dims(ds)
+    shape = tuple(ds.sizes[d] for d in dims)
+    points = [grid_point(ds, index) for index in np.ndindex(*shape)]
+    out = []
+    for a in GRID_AXES:
+        if a != "t0" and int(ds.attrs.get("bodies", 2)) == 1:
+            continue  # one body: no coupling
+        values = {str(p[a]) for p in points}
+        if len(values) > 1 or (a in always and a != "t0"):
+            out.append(a)
+    return out
+
+
+def panel_title(ds, index: tuple[int, ...], axes=None) -> str:
+    """Parameters of one grid point that vary between panels (``axes``, default
+    ``varying_axes``): d and phi for a pair, t0 as a multiple of T."""
     T = float(ds.attrs["forcing_period"])
     point = grid_point(ds, index)
     parts = []
-    for a in GRID_AXES:
-        if a not in swept and a not in always:
-            continue
-        if a in ("d", "phi") and int(ds.attrs.get("bodies", 2)) == 1:
-            continue
+    for a in varying_axes(ds) if axes is None else axes:
         v = point[a]
-        text = (format_multiple(v, "\\pi", np.pi) if a == "phi" else
-                format_multiple(v, "T", T) if a == "t0" else f"{v:.6g}").replace("*", "")
-        parts.append(f"${SYMBOLS[a]} = {text}$")
-    if "t0" not in swept:
-        mode = ds.attrs.get("t0_mode", "fixed")
-        parts.append("random $t_0$" if mode == "random" else
-                     f"$t_0 = {format_multiple(point['t0'], 'T', T).replace('*', '')}$")
+        if isinstance(v, str):
+            continue
+        parts.append(f"${SYMBOLS[a]} = {axis_value_text(a, v, T)}$")
     return ", ".join(parts)
 
 
-def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
-    """Categorical basin maps: one colour per label (fixed palette), attractors' section
-    points projected as dots, a legend with LaTeX names and each basin's share."""
-    plt = pyplot()
+def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) -> str:
+    """One title for the figure: model, plane, resolution, start time and every parameter
+    that is the same in all panels (those that differ are in the panel titles)."""
+    a0, a1 = str(ds.attrs["ic_dims"]).split()
+    variables = [str(v) for v in ds["variable"].values]
+    fixed = ds.attrs.get("plane_fixed") or ", ".join(
+        f"${AXIS_SYMBOLS.get(v, v)} = 0$" for v in variables if v not in (a0, a1))
+    pair = int(ds.attrs.get("bodies", 2)) == 2
+    head = (f"{ds.attrs.get('model')} {'pair' if pair else 'body'}: basins on "
+            f"$({AXIS_SYMBOLS.get(a0, a0)}, {AXIS_SYMBOLS.get(a1, a1)})$"
+            + (f", {fixed}" if fixed else "")
+            + f"; {shape[0]} x {shape[1]} initial conditions"
+            + (" per panel" if n_panels > 1 else ""))
+    T = float(ds.attrs["forcing_period"])
+    common = []
+    if n_panels and "t0" not in varying:
+        common.append(start_text(ds, (0,) * len(grid_dims(ds))))
+    first = grid_point(ds, (0,) * len(grid_dims(ds)))
+    for a in ("d", "phi", "k_c", "c_c"):
+        if a in varying or not pair:
+            continue
+        common.append(f"${SYMBOLS[a]} = {axis_value_text(a, first[a], T)}$")
+    params = parameter_text(ds, exclude=("d", "phi", "k_c", "c_c"))
+    return head + "\n" + ", ".join(common + ([params] if params else []))
+
+
+def draw_basins(ds, max_panels: int = 36):
+    """Categorical basin maps: one colour per label (fixed palette), the attractors'
+    section points as ringed markers, per panel a legend pairing each basin's colour with
+    its attractor's marker and its share; returns the matplotlib Figure."""
     from matplotlib.colors import ListedColormap
+    from matplotlib.legend_handler import HandlerTuple
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     axes_names = str(ds.attrs["ic_dims"]).split()
@@ -68,8 +130,10 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
     i0, i1 = variables.index(a0), variables.index(a1)
     ncols = min(3, n_panels)
     nrows = ceil(n_panels / ncols)
-    fig, axs = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 5.0 * nrows + 0.4),
-                            squeeze=False, constrained_layout=True)
+    fig = new_figure(figsize=(4.6 * ncols, 5.0 * nrows + 0.6))
+    axs = fig.subplots(nrows, ncols, squeeze=False)
+    varying = varying_axes(ds)
+    halo = _halo()
     for k, index in enumerate(np.ndindex(*grid_shape)):
         ax = axs[k // ncols, k % ncols]
         lab = label[index]
@@ -88,31 +152,42 @@ def plot_basins(ds, out: str | Path, max_panels: int = 36) -> Path:
             if count == 0 and pts.size == 0:
                 continue
             colour = colour_of(names[j], order)
+            patch = Patch(facecolor=colour, edgecolor="k", lw=0.5)
+            text = f"{latex[j]}  {100 * count / total:.1f}%"
             if pts.size:
-                ax.plot(pts[:, i0], pts[:, i1], "o", ms=6, mfc=colour, mec="k", mew=1.0,
-                        zorder=3)
-            handles.append(Patch(facecolor=colour, edgecolor="k",
-                                 label=f"{latex[j]}  {100 * count / total:.1f}%"))
+                ax.plot(pts[:, i0], pts[:, i1], mfc=colour, zorder=3, path_effects=halo,
+                        **MARKER)
+                marker = Line2D([], [], mfc=colour, path_effects=halo, **MARKER)
+                handles.append(((patch, marker), text))
+            else:
+                handles.append((patch, text))
         ax.set_xlim(x[0] - dx, x[-1] + dx)
         ax.set_ylim(y[0] - dy, y[-1] + dy)
         ax.set_xlabel(f"${AXIS_SYMBOLS.get(a0, a0)}$")
         ax.set_ylabel(f"${AXIS_SYMBOLS.get(a1, a1)}$")
-        ax.set_title(panel_title(ds, index), fontsize=9)
-        # below the panel: a legend inside could hide basins and attractor dots
-        ax.legend(handles=handles, fontsize=7, loc="upper center",
-                  bbox_to_anchor=(0.5, -0.13), ncols=min(3, len(handles)), frameon=False)
+        title = panel_title(ds, index, varying)
+        if n_panels > 1:
+            panel_letter(ax, k)
+            ax.set_title(title, fontsize=9)
+        # below the panel: a legend inside could hide basins and attractor markers
+        ax.legend([h for h, _ in handles], [t for _, t in handles], fontsize=7,
+                  loc="upper center", bbox_to_anchor=(0.5, -0.13),
+                  ncols=min(3, len(handles)), frameon=False,
+                  handler_map={tuple: HandlerTuple(ndivide=None, pad=0.3)})
     for k in range(n_panels, nrows * ncols):
         axs[k // ncols, k % ncols].axis("off")
-    fixed = ds.attrs.get("plane_fixed") or ", ".join(
-        f"{v} = 0" for v in variables if v not in (a0, a1))
-    fixed = f"; {fixed}" if fixed else ""
-    import textwrap
+    head = figure_title(ds, varying, (len(x), len(y)), n_panels)
+    note = ("markers: each attractor's points at $t = t_0 + nT$, in its basin's colour; "
+            "legend: basin, attractor, share of the plane")
+    if n_panels == 1:
+        title = panel_title(ds, (0,) * len(grid_shape), varying)
+        head = head.replace("\n", (", " + title if title else "") + "\n", 1)
+        axs[0, 0].set_title(wrap_tex(f"{head}\n{note}", 75), fontsize=8)
+    else:
+        fig.suptitle(wrap_tex(f"{head}\n{note}", 100 * ncols), fontsize=9)
+    return fig
 
-    swept = set(str(ds.attrs.get("grid_swept", "")).split())
-    params = "\n".join(textwrap.wrap(parameter_text(ds, exclude=swept), 60 * ncols))
-    fig.suptitle(f"{ds.attrs.get('model')} basins{fixed}\n{params}", fontsize=9)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=130)
-    plt.close(fig)
-    return out
+
+def plot_basins(ds, out: str | Path, max_panels: int = 36, dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_basins`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_basins(ds, max_panels), out, dpi)

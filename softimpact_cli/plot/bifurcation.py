@@ -1,5 +1,8 @@
-"""Figure 7: stroboscopic displacements of the left and right body against d, one colour
-per followed solution, destruction points as vertical lines, impacting states marked."""
+"""Figure 7: stroboscopic displacements of the left and right body against d. Each point
+takes the colour of the solution the followed state is on at that d (so a destroyed
+branch that falls onto another solution is drawn in that solution's colour); impacting
+and unresolved states have their own markers; destruction points are vertical lines in
+the colour of the solution destroyed."""
 
 from __future__ import annotations
 
@@ -8,53 +11,108 @@ from pathlib import Path
 import numpy as np
 
 from ..labels import latex_of
-from . import parameter_text, pyplot
-from .palette import IMPACTING, colour_of, solution_order
+from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, save, start_text
+from .palette import IMPACTING, SPECIAL, colour_of, solution_order
+
+TRANSIENT = SPECIAL["unresolved"]
 
 
-def plot_bifurcation(ds, out: str | Path) -> Path:
-    plt = pyplot()
+def point_styles(ds) -> dict[tuple[int, int], tuple[str, str]]:
+    """(branch, step) -> (kind, solution name): kind 'solution' (a non-impacting
+    solution of the catalogue, drawn in its colour), 'impacting', or 'transient' (no
+    period found, diverged, or a solution outside the catalogue)."""
+    table = {int(c): str(n) for c, n in zip(ds["label_code"].values, ds["label_name"].values,
+                                            strict=True)}
+    order = solution_order(ds) or [str(n) for n in ds["branch_name"].values]
+    label = ds["label"].values
+    impacting = ds["impacting"].values.astype(bool)
+    out = {}
+    for (i, j), code in np.ndenumerate(label):
+        name = table.get(int(code), f"code {int(code)}")
+        if impacting[i, j] or name.startswith("impacting"):
+            out[i, j] = ("impacting", name)
+        elif name in order:
+            out[i, j] = ("solution", name)
+        else:
+            out[i, j] = ("transient", name)
+    return out
+
+
+def draw_bifurcation(ds):
+    """Two panels (left body, right body) sharing d; returns the matplotlib Figure."""
     from matplotlib.lines import Line2D
 
     d = ds["d"].values
     names = [str(n) for n in ds["branch_name"].values]
-    order = solution_order(ds)
-    fig, axs = plt.subplots(2, 1, figsize=(9, 8.3), sharex=True, constrained_layout=True)
+    order = solution_order(ds) or names
+    styles = point_styles(ds)
+    fig = new_figure(figsize=(9, 8.6))
+    axs = fig.subplots(2, 1, sharex=True)
+    groups: dict[tuple[str, str], list[int]] = {}
+    for (i, j), key in styles.items():
+        groups.setdefault(key, []).append(i * len(d) + j)
+    drawn = [n for n in order if ("solution", n) in groups]
+
+    def rank(key):
+        kind, name = key
+        return (kind == "solution", drawn.index(name) if name in drawn else 0)
+
+    for ax, var in zip(axs, ("section_x1", "section_x2"), strict=True):
+        pts = ds[var].values.reshape(len(names) * len(d), -1)  # (branch * d, point)
+        dd = np.tile(d, len(names))
+        for (kind, name), rows in sorted(groups.items(), key=lambda g: rank(g[0])):
+            y = pts[rows]
+            x = np.repeat(dd[rows][:, None], y.shape[1], axis=1)
+            ok = np.isfinite(y)
+            if kind == "solution":
+                # solutions that share a body's state (L1^1 R^1 and L1^1 R^2 on the left)
+                # lie on one another: concentric dots, the first in catalogue order largest
+                size = 2.5 + 1.3 * (len(drawn) - 1 - drawn.index(name))
+                ax.plot(x[ok], y[ok], "o", ms=size, mew=0, color=colour_of(name, order),
+                        zorder=3)
+            elif kind == "impacting":
+                ax.plot(x[ok], y[ok], "x", ms=3.5, color=IMPACTING, alpha=0.8, zorder=2)
+            else:
+                ax.plot(x[ok], y[ok], "+", ms=3, color=TRANSIENT, alpha=0.6, zorder=1)
+        for i, name in enumerate(names):
+            at = float(ds["destroyed_at"].values[i])
+            if np.isfinite(at):
+                ax.axvline(at, color=colour_of(name, order), lw=0.9, ls="--")
     handles = []
     for i, name in enumerate(names):
-        colour = colour_of(name, order)
-        imp = ds["impacting"].values[i].astype(bool)
-        for ax, var in zip(axs, ("section_x1", "section_x2"), strict=True):
-            pts = ds[var].values[i]  # (d, point)
-            dd = np.repeat(d[:, None], pts.shape[1], axis=1)
-            ok = np.isfinite(pts)
-            free = ok & ~imp[:, None]
-            hit = ok & imp[:, None]
-            ax.plot(dd[free], pts[free], ".", ms=2.5, color=colour)
-            ax.plot(dd[hit], pts[hit], "x", ms=3, color=IMPACTING, alpha=0.8)
-            x = float(ds["destroyed_at"].values[i])
-            if np.isfinite(x):
-                ax.axvline(x, color=colour, lw=0.9, ls="--")
-        x = float(ds["destroyed_at"].values[i])
+        at = float(ds["destroyed_at"].values[i])
         falls = str(ds["falls_to"].values[i])
         fate = (f"falls to {latex_of(falls)}" if falls else
-                f"still impacting at $d = {d[-1]:g}$")
-        text = (f"destroyed at $d = {x:.4f}$, {fate}" if np.isfinite(x) else
+                f"no non-impacting solution reached by $d = {d[-1]:g}$")
+        text = (f"destroyed at $d = {at:.4f}$ (dashed), {fate}" if np.isfinite(at) else
                 "not destroyed in the range")
-        handles.append(Line2D([], [], color=colour, marker="o", ls="--",
+        handles.append(Line2D([], [], color=colour_of(name, order), marker="o", ls="--",
                               label=f"{latex_of(name)}: {text}"))
-    handles.append(Line2D([], [], color=IMPACTING, marker="x", ls="", label="impacting"))
-    axs[0].set_ylabel("$x_1(nT)$ (left body)")
-    axs[1].set_ylabel("$x_2(nT)$ (right body)")
+    kinds = {kind for kind, _ in styles.values()}
+    if "impacting" in kinds:
+        handles.append(Line2D([], [], color=IMPACTING, marker="x", ls="",
+                              label="impacting state"))
+    if "transient" in kinds:
+        handles.append(Line2D([], [], color=TRANSIENT, marker="+", ls="",
+                              label="no period found (transient) or diverged"))
+    axs[0].set_ylabel("$x_1(t_0 + nT)$ (left body)")
+    axs[1].set_ylabel("$x_2(t_0 + nT)$ (right body)")
     axs[1].set_xlabel("$d$")
+    for k, ax in enumerate(axs):
+        panel_letter(ax, k)
     # below the panels: a legend inside would hide the branches near the top
-    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncols=2)
+    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncols=2,
+               title="each point in the colour of the solution it is on at that $d$",
+               title_fontsize=8)
     if d[0] > d[-1]:
         axs[1].set_xlim(d[0], d[-1])  # d decreases to the right, as it is followed
-    fig.suptitle(f"{ds.attrs.get('model')} pair followed in d: "
-                 + parameter_text(ds, exclude=("d",)), fontsize=8)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=130)
-    plt.close(fig)
-    return out
+    step = abs(float(d[1] - d[0])) if len(d) > 1 else 0.0
+    fig.suptitle(f"{ds.attrs.get('model')} pair followed in $d$ from {d[0]:g} to "
+                 f"{d[-1]:g} (step {step:g}), {start_text(ds)}\n"
+                 + parameter_text(ds, exclude=("d",)), fontsize=9)
+    return fig
+
+
+def plot_bifurcation(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_bifurcation`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_bifurcation(ds), out, dpi)

@@ -8,20 +8,32 @@ from pathlib import Path
 import numpy as np
 
 from ..labels import latex_of
-from . import pyplot
+from . import (
+    DEFAULT_DPI,
+    new_figure,
+    panel_letter,
+    parameter_text,
+    phase_text,
+    save,
+    start_text,
+)
 from .palette import colour_of
 
 
-def plot_catalogue(ds, out: str | Path) -> Path:
+def plot_catalogue(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_catalogue`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_catalogue(ds), out, dpi)
+
+
+def draw_catalogue(ds):
     """Left: attractors on (x, x') with section points. Right: one panel per combination,
-    x1(t) and x2(t) over the joint period, section times marked."""
-    plt = pyplot()
+    x1(t) and x2(t) over the joint period, section times marked. Returns the Figure."""
     names = [str(n) for n in ds["attractor_name"].values]
     combos = [str(n) for n in ds["combination_name"].values] if "combination_name" in ds else []
     ncols = 4 if combos else 1
     nrows_c = ceil(len(combos) / (ncols - 1)) if combos else 0
     nrows = max(1, nrows_c, 2 if combos else 1)
-    fig = plt.figure(figsize=(4.0 * ncols, 2.6 * nrows + 0.6), constrained_layout=True)
+    fig = new_figure(figsize=(4.0 * ncols, 2.6 * nrows + 0.6))
     grid = fig.add_gridspec(nrows, ncols)
     ax = fig.add_subplot(grid[:, 0] if combos else grid[0, 0])
     spp = int(ds.attrs["curve_samples_per_period"])
@@ -41,7 +53,7 @@ def plot_catalogue(ds, out: str | Path) -> Path:
             ax.plot(rp[:, 0], rp[:, 1], "s", ms=4, color=c, mec="k", zorder=3)
     ax.set_xlabel("$x$")
     ax.set_ylabel(r"$\dot x$")
-    title = "attractors (dots: $t = nT$, numbered in canonical order)"
+    title = "attractors (dots: $t = t_0 + nT$, numbered in canonical order)"
     if "right_curve" in ds:
         title += "\nsolid/circles: left body, dashed/squares: right body"
     ax.set_title(title, fontsize=8)
@@ -69,21 +81,17 @@ def plot_catalogue(ds, out: str | Path) -> Path:
         for spine in cax.spines.values():  # the label's colour, as in the basin figures
             spine.set_edgecolor(colour_of(cname, combos))
             spine.set_linewidth(2.0)
-        cax.set_xlabel("$t/T$", fontsize=8)
+        cax.set_xlabel("$(t - t_0)/T$", fontsize=8)
         cax.tick_params(labelsize=7)
         if n == 0:
             cax.legend(fontsize=7, loc="upper right")
+    if combos:
+        for k, a in enumerate(fig.axes):
+            panel_letter(a, k, fontsize=10)
     phi = ds.attrs.get("phi")
-    fig.suptitle(_title(ds) + (f", $\\varphi = {phi:.4g}$" if phi is not None else "")
-                 + f" — T = {T:.4g}", fontsize=10)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
-    return out
-
-
-def _title(ds) -> str:
-    params = str(ds.attrs.get("parameters", "")).split(", ")
-    body = [p for p in params if p.split("=")[0] in ("c", "k1", "k2", "F", "w", "d1")]
-    return f"{ds.attrs.get('model', '')} catalogue: " + ", ".join(body)
+    params = parameter_text(ds, exclude=("d", "phi", "k_c", "c_c"))
+    fig.suptitle(f"{ds.attrs.get('model', '')} catalogue: {params}"
+                 + (f", right body's forcing phase $\\varphi = {phase_text(float(phi))}$"
+                    if phi is not None and combos else "")
+                 + f"; {start_text(ds)}, $T = 2\\pi/\\omega = {T:.4g}$", fontsize=10)
+    return fig

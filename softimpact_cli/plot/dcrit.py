@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..labels import latex_of
-from . import pyplot
+from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, phase_text, pi_ticks, save
 from .palette import colour_of, solution_order
 
 
@@ -69,8 +69,15 @@ def jumps(values: np.ndarray, factor: float = 8.0) -> np.ndarray:
     return np.where(step > factor * max(typical, 1e-12) + 0.05 * np.ptp(values))[0]
 
 
-def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
-    plt = pyplot()
+def plot_dcrit(ds, out: str | Path, combination: str | None = None,
+               dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_dcrit`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_dcrit(ds, combination), out, dpi)
+
+
+def draw_dcrit(ds, combination: str | None = None):
+    """d_crit(phi) with the surviving-count regions, beside x1 - x2 over one period at
+    the trace phases (only ``combination``'s when given); returns the Figure."""
     names = [str(n) for n in ds["combination_label"].values]
     order = solution_order(ds) or names
     phi = ds["phi"].values
@@ -78,9 +85,9 @@ def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
     n_traces = ds.sizes.get("trace_phi", 0)
     ncols = 1 + min(n_traces, 3)
     nrows = 1 + (max(n_traces - 3, 0) + 2) // 3 if n_traces > 3 else 1
-    fig, axs = plt.subplots(nrows, ncols, figsize=(5.5 + 3.6 * (ncols - 1), 4.6 * nrows),
-                            squeeze=False, constrained_layout=True,
-                            gridspec_kw={"width_ratios": [1.6] + [1] * (ncols - 1)})
+    fig = new_figure(figsize=(5.5 + 3.6 * (ncols - 1), 4.6 * nrows))
+    axs = fig.subplots(nrows, ncols, squeeze=False,
+                       gridspec_kw={"width_ratios": [1.6] + [1] * (ncols - 1)})
     ax = axs[0, 0]
     d_lo = max(0.0, 0.9 * float(np.nanmin(dc)))
     d_hi = 1.1 * float(np.nanmax(dc))
@@ -102,8 +109,7 @@ def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
     ax.set_ylabel("$d$")
     ax.set_xlim(phi[0], phi[-1])
     ax.set_ylim(d_lo, d_hi)
-    ticks = np.arange(0, 2 * np.pi + 1e-9, np.pi / 2)
-    ax.set_xticks(ticks, ["0", r"$\pi/2$", r"$\pi$", r"$3\pi/2$", r"$2\pi$"][: len(ticks)])
+    pi_ticks(ax.xaxis, float(phi[0]), float(phi[-1]))
     ax.set_title("critical distances $d_{crit}(\\varphi)$; numerals: combinations that "
                  "survive", fontsize=9)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0) if len(names) > 8
@@ -126,19 +132,18 @@ def plot_dcrit(ds, out: str | Path, combination: str | None = None) -> Path:
                          xytext=(4, 4), fontsize=7)
         tax.set_xlabel("$t/T$")
         tax.set_ylabel("$x_1 - x_2$")
-        tax.set_title(f"$\\varphi = {tphi / np.pi:.4g}\\pi$", fontsize=9)
+        tax.set_title(f"$x_1 - x_2$ at $\\varphi = {phase_text(tphi)}$", fontsize=9)
         if len(chosen) == 1:
             tax.legend(fontsize=7, loc="lower right")
     for r in range(nrows):
         for c in range(ncols):
             if not axs[r, c].has_data():
                 axs[r, c].axis("off")
-    body = [p for p in str(ds.attrs.get("parameters", "")).split(", ")
-            if p.split("=")[0] in ("c", "k1", "k2", "F", "w", "d1")]
-    fig.suptitle(f"{ds.attrs.get('model')} pair (uncoupled orbits): {', '.join(body)}",
-                 fontsize=9)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=130)
-    plt.close(fig)
-    return out
+    shown = [a for a in axs.ravel() if a.has_data()]
+    if len(shown) > 1:
+        for k, a in enumerate(shown):
+            panel_letter(a, k)
+    # d_crit depends on the uncoupled orbits only: not on d, phi (the axis), k_c, c_c, t0
+    fig.suptitle(f"{ds.attrs.get('model')} pair (uncoupled orbits): "
+                 + parameter_text(ds, exclude=("d", "phi", "k_c", "c_c")), fontsize=9)
+    return fig

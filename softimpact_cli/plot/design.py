@@ -11,7 +11,16 @@ import numpy as np
 
 from ..info import design_summary
 from ..labels import latex_of
-from . import parameter_text, pyplot
+from . import (
+    DEFAULT_DPI,
+    new_figure,
+    panel_letter,
+    parameter_text,
+    phase_text,
+    pi_ticks,
+    save,
+    start_text,
+)
 from .dcrit import jumps
 from .palette import IMPACTING, colour_of, solution_order
 
@@ -88,7 +97,8 @@ def _plane(ax, ds, s: dict, view=None) -> None:
             label="pick")
     ax.set_xlim(x_lo, x_hi)
     ax.set_ylim(y_lo, y_hi)
-    ax.set_xlabel(r"$\varphi$ (rad)")
+    pi_ticks(ax.xaxis, x_lo, x_hi, max_ticks=7)
+    ax.set_xlabel(r"$\varphi$")
     ax.set_ylabel("$d$")
     if zoom:
         ax.set_title("around the pick (+: perturbed points)", fontsize=9)
@@ -178,25 +188,26 @@ def _robustness(ax, s: dict, relative: float) -> None:
     ax.legend(fontsize=7, loc="best")
 
 
-def plot_design(ds, out: str | Path) -> Path:
-    plt = pyplot()
+def plot_design(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_design`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_design(ds), out, dpi)
+
+
+def draw_design(ds):
+    """The four panels of a design result; returns the matplotlib Figure."""
     s = design_summary(ds)
-    fig, axs = plt.subplots(1, 4, figsize=(20.0, 5.8), constrained_layout=True,
-                            gridspec_kw={"width_ratios": [1.5, 0.9, 1.0, 1.0]})
+    fig = new_figure(figsize=(20.0, 5.8))
+    axs = fig.subplots(1, 4, gridspec_kw={"width_ratios": [1.5, 0.9, 1.0, 1.0]})
     _plane(axs[0], ds, s)
     _plane(axs[1], ds, s, _zoom_view(ds, s["best"]))
     _bars(axs[2], s)
     _robustness(axs[3], s, float(ds.attrs["perturbation"]))
     b = s["best"]
-    t0 = "random $t_0$" if ds.attrs.get("t0_mode") == "random" else \
-        f"$t_0 = {float(ds.attrs.get('t0', 0.0)):.4g}$"
+    for k, ax in enumerate(axs):
+        panel_letter(ax, k)
     fig.suptitle(
         f"{ds.attrs.get('model')} pair: design for {latex_of(s['target'])}; pick d = "
-        f"{b['d']:.4g}, $\\varphi$ = {b['phi']:.4g}, $k_c$ = {b['k_c']:.4g}, $c_c$ = "
-        f"{b['c_c']:.4g}; samples in {ds.attrs.get('sample_box', '?')}, {t0}\n"
+        f"{b['d']:.4g}, $\\varphi = {phase_text(b['phi'])}$, $k_c$ = {b['k_c']:.4g}, $c_c$ = "
+        f"{b['c_c']:.4g}; samples in {ds.attrs.get('sample_box', '?')}, {start_text(ds)}\n"
         f"{parameter_text(ds, exclude=('d', 'phi', 'k_c', 'c_c', 'law'))}", fontsize=9)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=130)
-    plt.close(fig)
-    return out
+    return fig

@@ -8,12 +8,24 @@ from pathlib import Path
 import numpy as np
 
 from ..info import GRID_AXES
-from . import parameter_text, pyplot
+from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, pi_ticks, save, start_text
 from .basins import SYMBOLS
 
+# what a panel means when it is zero everywhere (drawn as words, not a blank square)
+ALL_ZERO = ("no coexisting non-impacting solution in this range",
+            "no periodic attractor found in this range",
+            "found and predicted agree at every point")
 
-def plot_map(ds, out: str | Path) -> Path:
-    plt = pyplot()
+
+def _say_empty(ax, text: str) -> None:
+    ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", fontsize=9,
+            wrap=True, bbox={"boxstyle": "round", "fc": "w", "ec": "0.5"})
+
+
+def draw_map(ds):
+    """Three panels over the two swept axes; returns the matplotlib Figure."""
+    import matplotlib
+
     swept = [a for a in GRID_AXES if ds.sizes.get(a, 1) > 1]
     if len(swept) != 2:
         raise ValueError(f"a map needs exactly two swept axes, got {swept or 'none'}")
@@ -27,29 +39,42 @@ def plot_map(ds, out: str | Path) -> Path:
     hy = (y[-1] - y[0]) / max(1, len(y) - 1) / 2
     extent = (x[0] - hx, x[-1] + hx, y[0] - hy, y[-1] + hy)  # cells centred on the grid
     top = int(max(pred.max(), found.max(), 1))
-    fig, axs = plt.subplots(1, 3, figsize=(15, 4.6), constrained_layout=True)
-    cmap = plt.get_cmap("viridis", top + 1)
+    fig = new_figure(figsize=(15, 5.0))
+    axs = fig.subplots(1, 3)
+    cmap = matplotlib.colormaps["viridis"].resampled(top + 1)
     panels = ((pred, "predicted (non-impacting, $d_{crit} < d$)"),
               (found, "found (all periodic attractors)"))
-    for ax, (data, title) in zip(axs[:2], panels, strict=True):
+    for k, (ax, (data, title)) in enumerate(zip(axs[:2], panels, strict=True)):
         im = ax.imshow(data, origin="lower", aspect="auto", extent=extent, cmap=cmap,
                        vmin=-0.5, vmax=top + 0.5, interpolation="nearest")
         ax.set_title(title, fontsize=9)
         fig.colorbar(im, ax=ax, ticks=range(top + 1), label="solutions")
+        if not np.any(data):
+            _say_empty(ax, ALL_ZERO[k])
     diff = free - pred
     lim = max(1, int(np.abs(diff).max()))
     im = axs[2].imshow(diff, origin="lower", aspect="auto", extent=extent, cmap="RdBu_r",
                        vmin=-lim - 0.5, vmax=lim + 0.5, interpolation="nearest")
     axs[2].set_title("found non-impacting minus predicted (0: agree)", fontsize=9)
     fig.colorbar(im, ax=axs[2], ticks=range(-lim, lim + 1))
-    for ax in axs:
+    if not np.any(diff):
+        _say_empty(axs[2], ALL_ZERO[2])
+    for k, ax in enumerate(axs):
         ax.set_xlabel(f"${SYMBOLS[ax_x]}$")
         ax.set_ylabel(f"${SYMBOLS[ax_y]}$")
+        for name, axis, (lo, hi) in ((ax_x, ax.xaxis, extent[:2]), (ax_y, ax.yaxis,
+                                                                     extent[2:])):
+            if name == "phi":
+                pi_ticks(axis, lo, hi)
+        panel_letter(ax, k)
+    kind = "random " if ds.attrs.get("ic_kind") == "random" else ""
     n = int(np.prod([ds.sizes[d] for d in str(ds.attrs["ic_dims"]).split()]))
-    fig.suptitle(f"{ds.attrs.get('model')} pair, {n} samples per point: "
+    fig.suptitle(f"{ds.attrs.get('model')} pair on a {len(x)} x {len(y)} grid, {n} {kind}"
+                 f"initial conditions per point, {start_text(ds)}\n"
                  + parameter_text(ds, exclude=swept), fontsize=9)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=130)
-    plt.close(fig)
-    return out
+    return fig
+
+
+def plot_map(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_map`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_map(ds), out, dpi)

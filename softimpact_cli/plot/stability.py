@@ -9,14 +9,19 @@ import numpy as np
 
 from ..info import grid_dims
 from ..labels import latex_of, parse_label
-from . import pyplot
+from . import DEFAULT_DPI, new_figure, parameter_text, pi_ticks, save, start_text
 from .basins import SYMBOLS
 from .palette import IMPACTING, colour_of, solution_order
 
 
-def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
-    """``bs`` is ``analysis.stability.basin_stability(ds)``; ``against`` a grid axis."""
-    plt = pyplot()
+def plot_stability(ds, bs, out: str | Path, against: str, dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_stability`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_stability(ds, bs, against), out, dpi)
+
+
+def draw_stability(ds, bs, against: str):
+    """``bs`` is ``analysis.stability.basin_stability(ds)``; ``against`` a grid axis.
+    Returns the matplotlib Figure."""
     dims = grid_dims(ds)
     x = ds[against].values
     T = float(ds.attrs["forcing_period"])
@@ -28,7 +33,8 @@ def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
     share = bs["share"].squeeze(drop=True)
     lo = bs["ci_low"].squeeze(drop=True)
     hi = bs["ci_high"].squeeze(drop=True)
-    fig, ax = plt.subplots(figsize=(9.0, 4.8), constrained_layout=True)
+    fig = new_figure(figsize=(9.0, 4.8))
+    ax = fig.subplots()
     order = solution_order(ds)
     never = []  # solutions of the catalogue no sample reached, at any grid point
     for g in [str(v) for v in bs["group"].values]:
@@ -56,17 +62,14 @@ def plot_stability(ds, bs, out: str | Path, against: str) -> Path:
     ax.set_xlabel(f"${SYMBOLS.get(against, against)}$" + (" / T" if against == "t0" else ""))
     ax.set_ylabel("basin stability")
     ax.set_ylim(-0.02, 1.02)
-    mode = ds.attrs.get("t0_mode", "fixed")
-    t0_text = ("random $t_0$" if mode == "random" else "$t_0$ swept" if mode == "grid" else
-               f"$t_0 = {float(ds['t0'].values.ravel()[0]) / T:.4g}\\,T$")
+    if against == "phi":
+        pi_ticks(ax.xaxis, float(xs.min()), float(xs.max()))
+    t0_text = "" if against == "t0" else f"; {start_text(ds)}"
+    swept = set(str(ds.attrs.get("grid_swept", "")).split()) | {against}
     ax.set_title(f"{ds.attrs.get('model')} pair, n = {bs.attrs['n']} samples per point, "
-                 f"95% Wilson bands; {t0_text}"
+                 f"95% Wilson bands{t0_text}\n{parameter_text(ds, exclude=swept)}"
                  + (f"\nnot drawn: {len(never)} catalogue solution"
                     f"{'s' if len(never) > 1 else ''} that no sample reached"
                     if never else ""), fontsize=9)
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=130)
-    plt.close(fig)
-    return out
+    return fig

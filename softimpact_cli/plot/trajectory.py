@@ -6,19 +6,24 @@ from pathlib import Path
 
 import numpy as np
 
-from . import pyplot
+from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, save, start_text
 
 BODY_COLOURS = ("#1f77b4", "#d62728")
 
 
-def plot_trajectory(ds, out: str | Path, last_periods: int | None = None) -> Path:
-    """Draw a trajectory result to ``out`` (PNG/PDF/SVG by suffix).
+def plot_trajectory(ds, out: str | Path, last_periods: int | None = None,
+                    dpi: int = DEFAULT_DPI) -> Path:
+    """Draw ``draw_trajectory`` to ``out`` (PNG/PDF/SVG by suffix)."""
+    return save(draw_trajectory(ds, last_periods), out, dpi)
+
+
+def draw_trajectory(ds, last_periods: int | None = None):
+    """The matplotlib Figure of a trajectory result.
 
     Panels: displacements against t/T with the section points; one phase portrait per
     body (transient faint, last ``last_periods`` periods strong, section points as dots);
     for a pair, the contact function x1 - x2 - d against t/T.
     """
-    plt = pyplot()
     names = [str(v) for v in ds["variable"].values]
     T = float(ds.attrs["forcing_period"])
     t = ds["time"].values / T
@@ -34,8 +39,8 @@ def plot_trajectory(ds, out: str | Path, last_periods: int | None = None) -> Pat
     steady = t >= t_cut
 
     ncols = 3 if pair else 2
-    fig, axes = plt.subplots(2 if pair else 1, ncols, figsize=(4.2 * ncols, 7 if pair else 3.6),
-                             squeeze=False, constrained_layout=True)
+    fig = new_figure(figsize=(4.2 * ncols, 7.2 if pair else 3.8))
+    axes = fig.subplots(2 if pair else 1, ncols, squeeze=False)
     ax = axes[0, 0]
     for k, (ix, _, xl, _) in enumerate(bodies):
         ax.plot(t, y[:, ix], lw=0.7, color=BODY_COLOURS[k], label=f"${xl}$")
@@ -43,7 +48,7 @@ def plot_trajectory(ds, out: str | Path, last_periods: int | None = None) -> Pat
     ax.set_xlabel("$t/T$")
     ax.set_ylabel("displacement")
     ax.legend(loc="upper right", fontsize=8)
-    ax.set_title("time series (dots: $t = nT$)", fontsize=9)
+    ax.set_title("time series (dots: $t = t_0 + nT$)", fontsize=9)
     for k, (ix, iv, xl, vl) in enumerate(bodies):
         ax = axes[0, 1 + k]
         ax.plot(y[~steady, ix], y[~steady, iv], lw=0.4, color="0.75")
@@ -76,12 +81,10 @@ def plot_trajectory(ds, out: str | Path, last_periods: int | None = None) -> Pat
         axes[1, 2].axis("off")
         axes[1, 2].text(0.0, 1.0, _summary(ds), va="top", family="monospace", fontsize=8,
                         transform=axes[1, 2].transAxes)
+    for k, ax in enumerate(a for a in axes.ravel() if a.axison):
+        panel_letter(ax, k)
     fig.suptitle(_title(ds), fontsize=10)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=130)
-    plt.close(fig)
-    return out
+    return fig
 
 
 def _parameter(ds, name: str) -> float | None:
@@ -98,10 +101,8 @@ def _parameter(ds, name: str) -> float | None:
 def _title(ds) -> str:
     model = ds.attrs.get("model", "")
     bodies = int(ds.attrs.get("bodies", 1))
-    params = str(ds.attrs.get("parameters", "")).replace("law=paper", "").strip(", ")
-    t0 = float(ds.attrs.get("t0", 0.0)) / float(ds.attrs["forcing_period"])
-    return (f"{model} {'pair' if bodies == 2 else 'body'}: {params}; start at $t_0 = "
-            f"{t0:.4g}\\,T$")
+    return (f"{model} {'pair' if bodies == 2 else 'body'}: {parameter_text(ds)}; start at "
+            f"{start_text(ds)}")
 
 
 def _summary(ds) -> str:
@@ -111,8 +112,19 @@ def _summary(ds) -> str:
         f"period       {a.get('period')} T",
         f"periods used {a.get('periods_used')}",
         f"contacts/orbit {a.get('contacts_on_orbit')}",
-        f"max penetr.  {float(a.get('max_penetration', np.nan)):.4g}",
+        _contact_line(ds),
         f"method       {a.get('integrator_resolved_method')}",
         f"wall         {float(a.get('wall_s', np.nan)):.3f} s",
     ]
     return "\n".join(lines)
+
+
+def _contact_line(ds) -> str:
+    """How close the bodies come on the final orbit: the penetration x1 - x2 - d of an
+    impacting orbit, the clearance d - max(x1 - x2) (> 0: never met) of another."""
+    g = float(ds.attrs.get("max_penetration", np.nan))
+    if not np.isfinite(g):
+        return "contact      none measured"
+    if int(ds.attrs.get("impacting", 0)) or g >= 0:
+        return f"max penetration\n  max(x1 - x2) - d = {g:.4g}"
+    return f"min clearance (no contact)\n  d - max(x1 - x2) = {-g:.4g}"
