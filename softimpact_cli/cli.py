@@ -211,8 +211,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     _warn_outcomes(ds, sc, strict)
 
 
-def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool) -> None:
-    """Run a design scene and write its result (shared by ``design`` and ``sweep``)."""
+def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool):
+    """Run a design scene, write its result (shared by ``design`` and ``sweep``), return it."""
     from .info import format_design
     from .store import write_result
     from .sweep.design import run_design
