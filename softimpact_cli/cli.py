@@ -42,13 +42,52 @@ def _open(path: str):
                           ) from None
 
 
-def _progress_bar(total: int, initial: int = 0):
-    """A tqdm bar on stderr (points/s, ETA) when it is a terminal; returns its update."""
+def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
+    """A tqdm bar on stderr (points/s, ETA) when it is a terminal, else a line every
+    $SOFTIMPACT_PROGRESS_INTERVAL s (default 30, see progress.py); returns the callable
+    fed with counts or with a chunk's label codes."""
+    if not sys.stderr.isatty():
+        from .progress import ProgressLines
+
+        return ProgressLines(total, initial, unit)
     from tqdm import tqdm
 
-    bar = tqdm(total=total, initial=initial, unit="ic", disable=not sys.stderr.isatty(),
-               leave=False, smoothing=0.1)
-    return bar.update
+    bar = tqdm(total=total, initial=initial, unit="ic", leave=False, smoothing=0.1)
+    return lambda work: bar.update(len(work) if hasattr(work, "__len__") else work)
+
+
+def _interruptible(func):
+    """Ctrl-C or SIGTERM end the command with one line saying what was kept (a callable
+    the command may put in ``ctx.meta["softimpact.kept"]``; else "nothing written") and
+    exit status 128 + the signal: 130 (SIGINT), 143 (SIGTERM). See interrupt.py."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        from . import interrupt
+
+        with interrupt.raising_on_signals():
+            try:
+                return func(*args, **kwargs)
+            except BaseException as exc:
+                stop = interrupt.interruption(exc)
+                if stop is None:
+                    raise
+                kept = click.get_current_context().meta.get("softimpact.kept")
+                interrupt.exit_interrupted(stop, kept() if kept else "nothing written")
+
+    return wrapper
+
+
+def _warn_outcomes(ds, scene, strict: bool) -> None:
+    """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
+    --strict, exit with outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
+    from .outcomes import STRICT_STATUS, outcome_warnings
+
+    messages = outcome_warnings(ds, scene.integrator.max_periods)
+    for message in messages:
+        click.echo(f"softimpact: warning: {message}", err=True)
+    if messages and strict:
+        sys.exit(STRICT_STATUS)
 
 
 def _check_rk4_step(scene, strict: bool) -> None:
@@ -107,10 +146,13 @@ def _scheduler(ctx, param, value):
 @click.option("--resolution", type=click.IntRange(min=1), default=None,
               help="Cap a plane's resolution per axis at N (previews, galleries).")
 @click.option("--strict", is_flag=True,
-              help="Refuse to start when a fixed RK4 step is unstable (instead of warning).")
+              help="Refuse to start when a fixed RK4 step is unstable, and exit with status "
+                   "3 (after writing the result) when over 5% of trajectories are unresolved "
+                   "or diverged or the catalogue is empty (instead of warning).")
 @click.option("--check", "check_n", type=click.IntRange(min=1), default=None, metavar="N",
               help="Afterwards rerun N random trajectories at tightened settings and store "
                    "the label change share and wall-time ratio in the result.")
+@_interruptible
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
           resolution, strict, check_n):
@@ -154,7 +196,12 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     _check_rk4_step(sc, strict)
     if sc.analysis.kind in SWEEP_KINDS:
+        from .interrupt import modified, sweep_kept
         from .sweep import run_sweep
+
+        flags = ("--quick",) * quick + (("--resolution", str(resolution)) if resolution else ())
+        click.get_current_context().meta["softimpact.kept"] = functools.partial(
+            sweep_kept, out, scene, flags, modified(out))
 
         ds = run_sweep(sc, out, workers=workers, scheduler=scheduler, resume=resume,
                        overwrite=overwrite, chunk_size=chunk_size, echo=echo,
@@ -163,17 +210,20 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
                    f"({ds.attrs['wall_s']:.1f} s) -> {out}")
         if check_n:
             _store_check(sc, out, check_n)
+        _warn_outcomes(ds, sc, strict)
         return
     if sc.analysis.kind == "design":
         if resume:
             raise ConfigError(f"{scene}: --resume is for sweeps; a design reruns whole")
-        _run_design(sc, out, overwrite, workers, scheduler, quiet)
+        _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
         return
     if resume:
         raise ConfigError(f"{scene}: --resume is for sweeps (kind basins or stability)")
     if out.exists() and not overwrite:
         raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
-    ds = run_scene(sc, progress=None if quiet else _progress_bar)
+    unit = {"catalogue": "initial conditions", "dcrit": "phases", "bifurcation": "branches"}
+    ds = run_scene(sc, progress=None if quiet else functools.partial(
+        _progress_bar, unit=unit.get(sc.analysis.kind, "steps")))
     write_result(ds, out)
     if ds.attrs.get("analysis") == "catalogue":
         from .info import format_catalogue
@@ -182,10 +232,11 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     click.echo(f"{sc.analysis.kind}: {ds.attrs.get('outcome', 'done')}"
                + (f", period {ds.attrs['period']}" if ds.attrs.get("period") else "")
                + f" ({ds.attrs['wall_s']:.2f} s) -> {out}")
+    _warn_outcomes(ds, sc, strict)
 
 
-def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool) -> None:
-    """Run a design scene and write its result (shared by ``design`` and ``sweep``)."""
+def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool):
+    """Run a design scene, write its result (shared by ``design`` and ``sweep``), return it."""
     from .info import format_design
     from .store import write_result
     from .sweep.design import run_design
@@ -198,6 +249,7 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
     write_result(ds, out)
     click.echo(format_design(ds))
     click.echo(f"design: {ds.attrs['wall_s']:.1f} s -> {out}")
+    return ds
 
 
 @main.command()
@@ -213,6 +265,7 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
               help="Dask scheduler: tcp://HOST:PORT, or local:N to start a LocalCluster.")
 @click.option("-q", "--quiet", is_flag=True, help="No stages, no progress bar.")
 @click.option("--quick", is_flag=True, help="At most 100 samples (previews and CI).")
+@_interruptible
 @_user_errors
 def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
     """Choose (d, phi, k_c, c_c) so that only the target solution survives (design SCENE).
@@ -237,7 +290,7 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
     out = Path(output) if output else sc.output
     check_writable(out, scene if not output else "command line",
                    "-o/--output" if output else "[output] path")
-    _run_design(sc, out, overwrite, workers, scheduler, quiet)
+    _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, False)
 
 
 def _store_check(scene, out: Path, sample: int) -> None:
@@ -268,6 +321,7 @@ def _format_check(report: dict) -> str:
               help="Trajectories (sweeps) or phases (dcrit) rerun.")
 @click.option("--seed", type=int, default=0, show_default=True)
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@_interruptible
 @_user_errors
 def check(scene, sample, seed, as_json):
     """Rerun part of SCENE at tightened settings: label changes and wall-time ratio."""

@@ -3,11 +3,23 @@
 One interface, ``executor.run(context, chunks) -> iterator of (index, result)``, so the
 sweep writes the same file whether chunks ran in this process, on a local process pool,
 or on a Dask distributed cluster.
+
+Workers end with the sweep: a pool's workers ignore SIGINT (the parent decides), take
+SIGTERM as the end, and ask the kernel to send them SIGTERM when the parent dies (Linux
+``PR_SET_PDEATHSIG``; elsewhere a thread polls the parent's pid). A sweep that stops
+early (Ctrl-C, SIGTERM, an error) cancels what is queued and terminates its workers
+instead of waiting for the running chunks; a Dask run closes its client and cluster.
 """
 
 from __future__ import annotations
 
+import logging
 import multiprocessing as mp
+import os
+import signal
+import sys
+import threading
+import time
 from collections.abc import Iterable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
@@ -16,8 +28,39 @@ from .chunks import SweepContext, run_chunk
 _CONTEXT: SweepContext | None = None  # a pool worker's copy, set once by its initializer
 
 
-def _init_worker(context: SweepContext) -> None:
+PR_SET_PDEATHSIG = 1  # from <linux/prctl.h>
+WATCH_PARENT_S = 1.0  # how often a worker without PR_SET_PDEATHSIG checks its parent
+
+
+def end_with_parent(parent: int) -> None:
+    """Make this (worker) process receive SIGTERM when process ``parent`` ends."""
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            if libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0) == 0:
+                if os.getppid() != parent:  # it died before prctl took effect
+                    os.kill(os.getpid(), signal.SIGTERM)
+                return
+        except (OSError, AttributeError):
+            pass
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(WATCH_PARENT_S)
+        os.kill(os.getpid(), signal.SIGTERM)
+
+    threading.Thread(target=watch, name="softimpact-parent-watch", daemon=True).start()
+
+
+def _init_worker(context: SweepContext, parent: int) -> None:
     global _CONTEXT
+    # a fork inherits the parent's handlers: Ctrl-C reaches the whole process group, and
+    # only the parent acts on it; SIGTERM (from the parent, or its death) ends a worker
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    end_with_parent(parent)
     _CONTEXT = context
 
 
@@ -43,8 +86,10 @@ class LocalExecutor:
             return
         # fork: workers inherit the parent's compiled kernels and the context for free
         ctx = mp.get_context("fork")
-        with ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_init_worker,
-                                 initargs=(context,)) as pool:
+        pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_init_worker,
+                                   initargs=(context, os.getpid()))
+        finished = False
+        try:
             pending = set()
             queue = iter(chunks)
             # keep a bounded number of chunks in flight so that results stream back
@@ -60,6 +105,42 @@ class LocalExecutor:
                     item = next(queue, None)
                     if item is not None:
                         pending.add(pool.submit(_run_in_worker, *item))
+            finished = True
+        finally:
+            if finished:
+                pool.shutdown(wait=True)
+            else:
+                stop_pool(pool)
+
+
+def stop_pool(pool: ProcessPoolExecutor, grace_s: float = 5.0) -> None:
+    """Cancel the queued chunks and end the workers now, without waiting for the
+    running ones (``shutdown`` alone would)."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in processes:
+        if p.is_alive():
+            p.terminate()
+    deadline = time.monotonic() + grace_s
+    for p in processes:
+        p.join(max(0.0, deadline - time.monotonic()))
+        if p.is_alive():
+            p.kill()
+            p.join(1.0)
+
+
+def _ignore_sigint_plugin():
+    """A Dask worker plugin: a local cluster's workers share the terminal's process group,
+    so a Ctrl-C reaches them too; the sweep decides (it closes the cluster), they would
+    only print tracebacks."""
+    from dask.distributed import WorkerPlugin
+
+    class IgnoreSigint(WorkerPlugin):
+        def setup(self, worker) -> None:
+            if threading.current_thread() is threading.main_thread():
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    return IgnoreSigint()
 
 
 class DaskExecutor:
@@ -75,15 +156,17 @@ class DaskExecutor:
             ) -> Iterator[tuple[int, dict]]:
         from dask.distributed import Client, LocalCluster, as_completed
 
-        cluster = None
-        if self.scheduler.startswith("local:"):
-            n = int(self.scheduler.split(":", 1)[1])
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
-            client = Client(cluster)
-        else:
-            client = Client(self.scheduler)
-        try:
+        cluster = client = None
+        try:  # from the start: an interrupted LocalCluster start is closed too
+            if self.scheduler.startswith("local:"):
+                n = int(self.scheduler.split(":", 1)[1])
+                # ERROR: a Ctrl-C cancels running chunks, which workers would log as warnings
+                cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                       dashboard_address=None, silence_logs=logging.ERROR)
+                client = Client(cluster)
+                client.register_plugin(_ignore_sigint_plugin(), name="softimpact-ignore-sigint")
+            else:
+                client = Client(self.scheduler)
             shared = client.scatter(context, broadcast=True)
             futures = [client.submit(run_chunk, shared, start, stop, key=f"chunk-{index}-"
                                      f"{id(context)}", pure=False)
@@ -91,8 +174,9 @@ class DaskExecutor:
             index_of = {f.key: int(f.key.split("-")[1]) for f in futures}
             for future, result in as_completed(futures, with_results=True):
                 yield index_of[future.key], result
-        finally:
-            client.close()
+        finally:  # on a remote scheduler, closing the client cancels what it still wants
+            if client is not None:
+                client.close()
             if cluster is not None:
                 cluster.close()
 
@@ -101,6 +185,4 @@ def make_executor(workers: int | None, scheduler: str | None):
     """The executor for ``--workers`` / ``--scheduler`` (scheduler wins)."""
     if scheduler:
         return DaskExecutor(scheduler)
-    import os
-
     return LocalExecutor(workers if workers else (os.cpu_count() or 1))

@@ -158,7 +158,7 @@ def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: st
     for index, result in executor.run(context, todo):
         store.write_chunk(index, result)
         if tick:
-            tick(len(result["label"]))
+            tick(result["label"])  # codes: progress counts the unresolved too
 
     arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
     orbits: dict = {}

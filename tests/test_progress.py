@@ -1,0 +1,42 @@
+"""Progress lines for logs: counts, rate, ETA, unresolved share; a last line at the end."""
+
+import time
+
+import numpy as np
+
+from softimpact_cli.labels import DIVERGED_CODE, UNRESOLVED_CODE
+from softimpact_cli.progress import ProgressLines, duration, interval_s
+
+
+def test_lines_count_unresolved_and_end_with_the_total():
+    lines = []
+    p = ProgressLines(8, initial=2, interval=0.02, write=lines.append)
+    p(np.array([0, UNRESOLVED_CODE, 1]))
+    deadline = time.monotonic() + 5
+    while not lines and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert lines and lines[0].startswith("progress: 5/8 trajectories (62.5%), ")
+    assert "ETA " in lines[0] and "unresolved 1 (33.33%)" in lines[0]
+    p(np.array([DIVERGED_CODE, 0, 0]))
+    assert lines[-1].startswith("progress: 8/8 trajectories (100.0%), ")
+    assert "unresolved 1 (16.67%)" in lines[-1] and "diverged 1 (16.67%)" in lines[-1]
+    n = len(lines)
+    time.sleep(0.1)
+    assert len(lines) == n  # the timer stopped with the total
+
+
+def test_counts_without_labels_say_nothing_about_unresolved():
+    lines = []
+    p = ProgressLines(3, unit="phases", interval=60, write=lines.append)
+    p(1)
+    p(2)
+    assert lines == [lines[-1]] and lines[-1].startswith("progress: 3/3 phases (100.0%)")
+    assert "unresolved" not in lines[-1]
+
+
+def test_durations_and_interval(monkeypatch):
+    assert [duration(s) for s in (5, 460, 7500)] == ["5s", "7m40s", "2h05m"]
+    monkeypatch.setenv("SOFTIMPACT_PROGRESS_INTERVAL", "0.5")
+    assert interval_s() == 0.5
+    monkeypatch.setenv("SOFTIMPACT_PROGRESS_INTERVAL", "soon")
+    assert interval_s() == 30.0
