@@ -17,8 +17,11 @@ from .. import __version__
 
 def command_line() -> str:
     """This process's command line as a user would type it (``softimpact sweep ...``)."""
-    program = os.path.basename(sys.argv[0]) if sys.argv and sys.argv[0] else "python"
-    if program in ("__main__.py", "-m", "-c"):
+    argv0 = sys.argv[0] if sys.argv and sys.argv[0] else "python"
+    program = os.path.basename(argv0)
+    if program == "__main__.py":  # python -m PACKAGE
+        program = os.path.basename(os.path.dirname(argv0))
+    if program == "softimpact_cli":
         program = "softimpact"
     return shlex.join([program, *sys.argv[1:]])
 

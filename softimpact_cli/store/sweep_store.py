@@ -23,6 +23,7 @@ import json
 import os
 import shutil
 import time
+import zipfile
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -191,6 +192,10 @@ class SweepStore:
             raise
         except FileNotFoundError:
             raise DamagedPart("missing") from None
+        except zipfile.BadZipFile as exc:
+            if "CRC" in str(exc):  # the zip member's own checksum caught the flip
+                raise DamagedPart("checksum") from None
+            raise DamagedPart("unreadable (truncated or damaged)") from None
         except Exception:  # truncated zip, bad JSON, ...: the file is damaged
             raise DamagedPart("unreadable (truncated or damaged)") from None
         body = {k: v for k, v in meta.items() if k != "checksum"}
