@@ -52,6 +52,7 @@ def acquire(path: str | os.PathLike, command: str) -> None:
     lock = lock_path(key)
     while True:
         try:
+            lock.parent.mkdir(parents=True, exist_ok=True)
             fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:
             raise ConfigError(f"{path}: cannot create the lock file {lock} "

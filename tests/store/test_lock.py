@@ -79,3 +79,17 @@ def test_second_sweep_on_the_same_output_is_refused_by_the_cli(holder, tmp_path)
             f"softimpact: error: {out}: in use by process {proc.pid} (softimpact sweep "
             "holder.toml); wait for it to end (or stop it) and run again"]
     assert not out.exists()
+
+
+def test_lock_in_a_folder_that_does_not_exist_yet(tmp_path):
+    out = tmp_path / "new" / "deeper" / "r.h5"
+    with output_lock(out, "x"):
+        assert held(out)
+    assert out.parent.is_dir() and not lock_path(out).exists()
+
+
+def test_lock_where_nothing_can_be_created_is_one_clean_error(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    with pytest.raises(ConfigError, match="cannot create the lock file"):
+        acquire(blocker / "r.h5", "x")
