@@ -191,6 +191,9 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
             header, damaged = store.header(), None
         except DamagedHeader as why:
             header, damaged = None, str(why)
+        if header is not None and header.attrs.get("scene_sha256") != scene.sha256:
+            raise ConfigError(f"{out}: was started from another scene (hash differs); "
+                              "resume with the same scene, or --overwrite")
         if header is not None and int(header.attrs.get("complete", 0)) == 1:
             if not store.parts.exists():
                 raise ConfigError(f"{out}: is complete already; nothing to resume")
@@ -199,9 +202,6 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
                  "interrupted clean-up left behind")
             return open_result(out)
         if header is not None:
-            if header.attrs.get("scene_sha256") != scene.sha256:
-                raise ConfigError(f"{out}: was started from another scene (hash differs); "
-                                  "resume with the same scene, or --overwrite")
             size = int(header.attrs["chunk_size"])
             _check_chunk_size(chunk_size, size, out)
         elif store.parts.exists():
