@@ -3,13 +3,37 @@
 from __future__ import annotations
 
 import datetime as _dt
+import os
 import platform
+import shlex
 import socket
+import sys
 
 import numba
 import numpy as np
 
 from .. import __version__
+
+
+def command_line() -> str:
+    """This process's command line as a user would type it (``softimpact sweep ...``)."""
+    argv0 = sys.argv[0] if sys.argv and sys.argv[0] else "python"
+    program = os.path.basename(argv0)
+    if program == "__main__.py":  # python -m PACKAGE
+        program = os.path.basename(os.path.dirname(argv0))
+    if program == "softimpact_cli":
+        program = "softimpact"
+    return shlex.join([program, *sys.argv[1:]])
+
+
+def iso_time(epoch: float) -> str:
+    """An epoch time (s) as an ISO 8601 UTC string."""
+    return _dt.datetime.fromtimestamp(epoch, _dt.UTC).isoformat(timespec="seconds")
+
+
+def history_line(started: float) -> str:
+    """One line of the CF ``history`` attribute: when and by which command."""
+    return f"{iso_time(started)} {command_line()}"
 
 
 def provenance(scene, started: float, finished: float, wall_s: float) -> dict:
@@ -40,5 +64,17 @@ def provenance(scene, started: float, finished: float, wall_s: float) -> dict:
         "wall_s": float(wall_s),
         "machine": f"{socket.gethostname()} {platform.machine()} {platform.system()} "
                    f"python {platform.python_version()}",
+        "history": history_line(started),
         "complete": 1,
+        **_start_time(scene),
     }
+
+
+def _start_time(scene) -> dict:
+    """``t0`` (time units), ``t0_over_T`` and ``t0_mode`` of an analysis that starts at
+    one given time ([analysis] t0: trajectory, catalogue); sweeps record their own."""
+    t0 = getattr(scene.analysis, "t0", None)
+    if t0 is None:
+        return {}
+    period = 2 * np.pi / float(scene.values["w"])
+    return {"t0": float(t0), "t0_over_T": float(t0) / period, "t0_mode": "fixed"}

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import xarray as xr
 
@@ -23,6 +25,37 @@ ATTRIBUTES = {
 }
 
 
+def cf_word(name: str) -> str:
+    """A label name as a CF flag_meanings word: letters, digits and _ - . + @ only."""
+    return re.sub(r"[^A-Za-z0-9_.+@-]", "_", name.strip()) or "_"
+
+
+def categorical_attrs(codes, names, dtype) -> dict:
+    """CF categorical attributes of the label variable: ``flag_values`` (the codes, of
+    the variable's type), ``flag_meanings`` (CF-safe words, unique) and ``flag_names``
+    (the real names, "; " separated, same order)."""
+    words: list[str] = []
+    for name in names:
+        word = cf_word(name)
+        while word in words:
+            word += "_"
+        words.append(word)
+    return {"flag_values": np.array(codes, dtype=dtype), "flag_meanings": " ".join(words),
+            "flag_names": "; ".join(names)}
+
+
+def t0_attrs(t0_values, period: float, random: bool, swept: bool) -> dict:
+    """Global attributes recording the start time actually used: ``t0_mode`` (fixed,
+    grid or random), ``t0`` (time units; the grid's values when swept) and
+    ``t0_over_T`` (the same in forcing periods). Random: only the mode (the per-sample
+    times are the variable ``sample_t0``)."""
+    if random:
+        return {"t0_mode": "random"}
+    values = np.array(list(dict.fromkeys(float(v) for v in np.ravel(t0_values))))
+    t0 = values if swept else float(values[0])
+    return {"t0_mode": "grid" if swept else "fixed", "t0": t0, "t0_over_T": t0 / period}
+
+
 def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
                   names: tuple[str, ...], t0_per_sample: np.ndarray | None) -> xr.Dataset:
     """Dataset with dims (d, phi, k_c, c_c, t0, *initial-condition dims).
@@ -37,6 +70,10 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     along = ("panel",) if grid.panels else None
     coords: dict = {a: (along or a, np.array(grid.axes[a]), {"units": GRID_UNITS[a]})
                     for a in GRID_AXES}
+    period = 2 * np.pi / float(scene.values["w"])
+    if "t0" not in grid.swept and ic.t0 is not None:  # the fixed start actually used
+        coords["t0"] = (along or "t0", np.full(len(grid.axes["t0"]), float(ic.t0)),
+                        coords["t0"][2])
     coords["t0"][2]["long_name"] = "time at which the initial state is imposed"
     if grid.panels:
         coords["panel"] = ("panel", np.arange(grid.size))
@@ -48,6 +85,7 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
         data[key] = (dims, arrays[key].reshape(shape), {"long_name": long_name, "units": units})
     codes = sorted(set(range(len(names))) | set(np.unique(arrays["label"]).tolist()))
     label_names = [name_of(c, names) for c in codes]
+    data["label"][2].update(categorical_attrs(codes, label_names, RESULT_FIELDS["label"]))
     coords["label_index"] = ("label_index", np.arange(len(codes)))
     data["label_code"] = (("label_index",), np.array(codes, dtype=np.int32),
                           {"long_name": "label code"})
@@ -83,9 +121,9 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
         "ic_dims": " ".join(ic.dims),
         "grid_swept": " ".join(grid.swept),
         "grid_dims": " ".join(grid.dims),
-        "t0_mode": "random" if t0_per_sample is not None else
-                   ("grid" if "t0" in grid.swept else "fixed"),
-        "forcing_period": 2 * np.pi / float(scene.values["w"]),
+        **t0_attrs(coords["t0"][1], period, t0_per_sample is not None,
+                   "t0" in grid.swept),
+        "forcing_period": period,
         "catalogue_names": "; ".join(names),
     }
     if ic.kind == "plane":

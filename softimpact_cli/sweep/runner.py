@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import datetime as _dt
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -19,8 +20,10 @@ from ..analysis.catalogue import (
     sample_states,
 )
 from ..config import ConfigError, Scene
-from ..store.provenance import provenance
-from ..store.sweep_store import SweepStore
+from ..store import open_result
+from ..store.lock import output_lock
+from ..store.provenance import command_line, history_line, provenance
+from ..store.sweep_store import DamagedHeader, DamagedPart, RunIdentity, SweepStore
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
 from .plan import Plan, default_chunk_size
@@ -94,49 +97,133 @@ def sweep_context(scene: Scene, catalogues: dict, names: tuple[str, ...],
     )
 
 
-def _header(scene: Scene, plan: Plan, catalogue: Catalogue) -> xr.Dataset:
+MAX_ROUNDS = 4  # rounds of chunk computing (later ones redo parts lost during the run)
+
+
+def _header(scene: Scene, plan: Plan, catalogue: Catalogue, started: float,
+            history: str) -> xr.Dataset:
     ds = catalogue_dataset(catalogue, scene.system, scene.integrator)
-    ds.attrs.update(provenance(scene, time.time(), time.time(), 0.0))
+    ds.attrs.update(provenance(scene, started, started, 0.0))
     ds.attrs.update({"complete": 0, "analysis": scene.analysis.kind, "n": plan.n_total,
                      "n_chunks": plan.n_chunks, "chunk_size": plan.chunk_size,
-                     "plan": plan.describe()})
+                     "plan": plan.describe(), "history": history})
     return ds
+
+
+def _epoch(iso) -> float | None:
+    """An ISO time attribute as epoch seconds (None if absent or unreadable)."""
+    try:
+        return _dt.datetime.fromisoformat(str(iso)).timestamp()
+    except ValueError:
+        return None
+
+
+def _check_chunk_size(given: int | None, stored: int, out: Path) -> None:
+    if given is not None and given != stored:
+        raise ConfigError(f"{out}: --chunk-size {given} differs from the interrupted run's "
+                          f"{stored}; resume without --chunk-size (a run keeps its chunk size)"
+                          f", or pass --overwrite to start again with {given}")
+
+
+def _count(n: int, what: str) -> str:
+    return f"{n} {what}" + ("" if n == 1 else "s")
+
+
+def _bad_parts_note(bad: dict[int, str]) -> str:
+    shown = [f"chunk {i}: {why}" for i, why in sorted(bad.items())[:6]]
+    if len(bad) > len(shown):
+        shown.append(f"{len(bad) - len(shown)} more")
+    verb = "was" if len(bad) == 1 else "were"
+    return (f"resume: {_count(len(bad), 'chunk file')} {verb} damaged or foreign "
+            f"({'; '.join(shown)}); recomputing {'it' if len(bad) == 1 else 'them'}")
+
+
+def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
+              ) -> tuple[dict, dict, dict[float, float]]:
+    """(flat arrays, orbits, {session start: its last part written}) from verified parts.
+    A part that fails verification is deleted and DamagedPart names it."""
+    arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
+    orbits: dict = {}
+    sessions: dict[float, float] = {}
+    for index in range(plan.n_chunks):
+        start, stop = plan.chunk(index)
+        try:
+            chunk, meta = store.read_chunk(index, identity)
+        except DamagedPart as why:
+            store.drop_chunk(index)
+            raise DamagedPart(f"chunk {index}: {why}") from None
+        for key in RESULT_FIELDS:
+            arrays[key][start:stop] = chunk[key]
+        for key, (flat, pts) in chunk["orbits"].items():
+            if key not in orbits or flat < orbits[key][0]:
+                orbits[key] = (flat, pts)
+        first, last = float(meta["session_started"]), float(meta["written"])
+        sessions[first] = max(sessions.get(first, first), last)
+    return arrays, orbits, sessions
 
 
 def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: str | None = None,
               resume: bool = False, overwrite: bool = False, chunk_size: int | None = None,
               echo: Callable[[str], None] = lambda s: None,
-              progress: Callable[[int, int], Callable[[int], None]] | None = None
+              progress: Callable[[int, int], Callable[[np.ndarray], None]] | None = None
               ) -> xr.Dataset:
     """Run (or resume) a sweep scene into ``out``; return the complete dataset.
 
-    ``progress(total, initial)`` may return a callable fed with the trajectories done.
+    ``progress(total, initial)`` may return a callable fed with each chunk's label codes.
+    The output is locked for the whole run: a second run on it is refused (ConfigError
+    naming the holder's pid). ``resume`` verifies every chunk file and redoes the bad
+    ones; with nothing to resume it starts a new run (and says so).
     """
+    with output_lock(out, command_line()):
+        return _run_sweep(scene, Path(out), workers, scheduler, resume, overwrite,
+                          chunk_size, echo, progress)
+
+
+def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, echo, progress):
+    session = time.time()
     store = SweepStore(out)
     executor = make_executor(workers, scheduler)
     n_total = scene.grid.size * scene.initial_conditions.count
     size = chunk_size or default_chunk_size(n_total, getattr(executor, "workers", 8))
+    header = None
     if resume:
-        header = store.header()
-        if header is None:
-            raise ConfigError(f"{out}: nothing to resume (no such result)")
-        if int(header.attrs.get("complete", 0)) == 1:
-            raise ConfigError(f"{out}: is complete already; nothing to resume")
-        if header.attrs.get("scene_sha256") != scene.sha256:
+        try:
+            header, damaged = store.header(), None
+        except DamagedHeader as why:
+            header, damaged = None, str(why)
+        if header is not None and header.attrs.get("scene_sha256") != scene.sha256:
             raise ConfigError(f"{out}: was started from another scene (hash differs); "
                               "resume with the same scene, or --overwrite")
-        size = int(header.attrs["chunk_size"])
-    elif store.exists():
-        if not overwrite:
-            raise ConfigError(f"{out}: result exists; pass --overwrite to replace it, or "
-                              "--resume to finish an interrupted run")
+        if header is not None and int(header.attrs.get("complete", 0)) == 1:
+            if not store.parts.exists():
+                raise ConfigError(f"{out}: is complete already; nothing to resume")
+            store.remove_parts()
+            echo(f"resume: {out} is complete; removed the chunk folder {store.parts} that an "
+                 "interrupted clean-up left behind")
+            return open_result(out)
+        if header is not None:
+            size = int(header.attrs["chunk_size"])
+            _check_chunk_size(chunk_size, size, out)
+        elif store.parts.exists():
+            stored = store.stored_chunk_size(scene.sha256)
+            if stored:
+                _check_chunk_size(chunk_size, stored, out)
+                size = stored
+            echo(f"resume: the result header {out} is "
+                 f"{f'unreadable ({damaged})' if damaged else 'missing'}; rewriting it and "
+                 "keeping the chunk files that verify")
+        else:
+            echo(f"resume: the result header {out} is unreadable ({damaged}); starting a new "
+                 "run" if damaged else f"nothing to resume at {out}; starting a new run")
+            resume = False
+    elif store.exists() and not overwrite:
+        raise ConfigError(f"{out}: result exists; pass --overwrite to replace it, or "
+                          "--resume to finish an interrupted run")
     plan = Plan(scene, size)
     plan.check_resources(out, str(scene.source))
     echo(plan.describe())
     echo(f"executor: {executor.describe()}")
 
-    started = time.time()
-    t_start = time.perf_counter()
     catalogues, names = prepare_catalogues(scene)
     echo(f"catalogue: {len(names)} solutions: {', '.join(names)}")
     ic = scene.initial_conditions
@@ -144,45 +231,70 @@ def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: st
     if ic.t0 is None:
         t0_per_sample = ic.random_t0(2 * np.pi / float(scene.values["w"]))
     context = sweep_context(scene, catalogues, names, t0_per_sample)
+    identity = RunIdentity(scene.sha256, plan.chunk_size, plan.n_total)
+    first = next(iter(catalogues.values()))
+    good: dict = {}
     if not resume:
-        first = next(iter(catalogues.values()))
         if overwrite:
             store.remove()
-        store.start(_header(scene, plan, first))
-    done = store.done()
-    todo = [(i, *plan.chunk(i)) for i in range(plan.n_chunks) if i not in done]
-    if done:
-        echo(f"resuming: {len(done)} of {plan.n_chunks} chunks already done")
-    tick = progress(plan.n_total, sum(plan.chunk(i)[1] - plan.chunk(i)[0] for i in done)) \
+        header = _header(scene, plan, first, session, history_line(session))
+        store.start(header)
+    else:
+        if header is None:  # unreadable or missing: a new one, the first start from parts
+            header = _header(scene, plan, first, session, history_line(session))
+        else:
+            header.attrs["history"] = "\n".join(
+                filter(None, [str(header.attrs.get("history", "")), history_line(session)]))
+        store.write_header(header)
+        if store.ensure_parts():
+            echo(f"resume: the chunk folder {store.parts} was missing; recomputing every chunk")
+        good, bad = store.verify(identity)
+        if bad:
+            echo(_bad_parts_note(bad))
+        if good:
+            echo(f"resuming: {len(good)} of {plan.n_chunks} chunks already done")
+    tick = progress(plan.n_total, sum(plan.chunk(i)[1] - plan.chunk(i)[0] for i in good)) \
         if progress else None
-    for index, result in executor.run(context, todo):
-        store.write_chunk(index, result)
-        if tick:
-            tick(result["label"])  # codes: progress counts the unresolved too
+    for attempt in range(MAX_ROUNDS):
+        todo = [(i, *plan.chunk(i)) for i in range(plan.n_chunks) if i not in store.done()]
+        if todo and attempt:
+            echo(f"{_count(len(todo), 'chunk file')} went missing or broke during the run; "
+                 "recomputing them")
+        for index, result in (executor.run(context, todo) if todo else ()):
+            if store.ensure_parts():
+                echo(f"the chunk folder {store.parts} vanished during the run; recreated it")
+            store.write_chunk(index, result, identity, session)
+            if tick:
+                tick(result["label"])  # codes: progress counts the unresolved too
+        if len(store.done() & set(range(plan.n_chunks))) < plan.n_chunks:
+            continue
+        try:
+            arrays, orbits, sessions = _assemble(store, plan, identity)
+            break
+        except DamagedPart as why:
+            echo(f"{why}; recomputing it")
+    else:
+        raise ConfigError(f"{store.parts}: chunk files keep vanishing or breaking while the "
+                          "sweep runs (another program removing them?); run again with "
+                          "--resume")
 
-    arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
-    orbits: dict = {}
-    for index in range(plan.n_chunks):
-        start, stop = plan.chunk(index)
-        chunk = store.read_chunk(index)
-        for key in RESULT_FIELDS:
-            arrays[key][start:stop] = chunk[key]
-        for key, (flat, pts) in chunk["orbits"].items():
-            if key not in orbits or flat < orbits[key][0]:
-                orbits[key] = (flat, pts)
     ds = sweep_dataset(scene, arrays, orbits, names, t0_per_sample)
     if scene.analysis.kind == "map":
         from ..analysis.maps import add_map_counts
 
-        first = next(iter(catalogues.values()))
         ds = add_map_counts(ds, scene.system, dict(scene.values), list(first.attractors))
-    catalogue_vars = catalogue_dataset(next(iter(catalogues.values())), scene.system,
-                                       scene.integrator)
+    catalogue_vars = catalogue_dataset(first, scene.system, scene.integrator)
     ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
-    wall = time.perf_counter() - t_start
-    ds.attrs.update(provenance(scene, started, time.time(), wall))
+    # wall time and start over every session that contributed parts (a session counts
+    # until its last part written; this one until now)
+    now = time.time()
+    sessions[session] = now
+    wall = sum(last - start for start, last in sessions.items())
+    started = min(t for t in (_epoch(header.attrs.get("started")), *sessions) if t is not None)
+    ds.attrs.update(provenance(scene, started, now, wall))
     ds.attrs.update({"n": plan.n_total, "n_chunks": plan.n_chunks, "chunk_size": plan.chunk_size,
                      "plan": plan.describe(), "executor": executor.describe(),
-                     "resumed": int(bool(done)), "complete": 1})
+                     "resumed": int(bool(good)), "sessions": len(sessions),
+                     "history": header.attrs["history"], "complete": 1})
     store.finish(ds)
     return ds

@@ -14,6 +14,7 @@ import pytest
 import xarray as xr
 
 from softimpact_cli.config import parse_scene
+from softimpact_cli.store import open_result
 from softimpact_cli.sweep import run_sweep
 
 SCENE = """
@@ -64,7 +65,9 @@ def serial(tmp_path_factory):
 def test_layout_with_xarray(serial):
     _, out, _ = serial
     with xr.open_dataset(out) as ds:
-        assert ds["label"].dims == ("d", "phi", "k_c", "c_c", "t0", "x1", "x2")
+        # on disk the plane's first axis is last: generic plots put x1 horizontally
+        assert ds["label"].dims == ("d", "phi", "k_c", "c_c", "t0", "x2", "x1")
+        assert open_result(out)["label"].dims == ("d", "phi", "k_c", "c_c", "t0", "x1", "x2")
         assert ds.sizes["phi"] == 2 and ds.sizes["x1"] == 6 and ds.sizes["x2"] == 6
         assert ds["phi"].values[1] == pytest.approx(np.pi)
         for v in ("label", "period", "periods_used", "status", "max_penetration", "contacts"):
@@ -151,9 +154,9 @@ def test_sigkill_then_resume_equals_uninterrupted(serial, tmp_path):
     assert again.returncode == 2 and "--resume" in again.stderr
     resumed = _cli("sweep", str(scene), "--resume", "-q", "--workers", "1")
     assert resumed.returncode == 0, resumed.stderr
-    with xr.open_dataset(out) as back:
-        assert back.attrs["complete"] == 1 and back.attrs["resumed"] == 1
-        equal_results(ds, back.load())
+    back = open_result(out)
+    assert back.attrs["complete"] == 1 and back.attrs["resumed"] == 1
+    equal_results(ds, back)
     assert not parts.exists()
 
 
