@@ -455,18 +455,23 @@ def _read_t0(sec: Section, period: float) -> float:
 
 
 def _check_nesting(source: str, doc: dict) -> None:
-    """Refuse tables and arrays nested deeper than MAX_NESTING (iteratively: no recursion)."""
-    stack: list[tuple[Any, str, int]] = [(doc, "", 0)]
+    """Refuse tables and arrays nested deeper than MAX_NESTING (iteratively: no recursion)
+    and integers beyond 64 bits."""
+    stack: list[tuple[Any, str, int]] = [(v, f"[{k}]", 1) for k, v in doc.items()]
     while stack:
         value, where, depth = stack.pop()
         if depth > MAX_NESTING:
             raise ConfigError(f"{source}: {where[:80]}: tables or arrays nested more than "
                               f"{MAX_NESTING} levels deep")
         if isinstance(value, dict):
-            stack.extend((v, f"{where}.{k}" if where else str(k), depth + 1)
+            stack.extend((v, f"{where} {k}" if depth == 1 else f"{where}.{k}", depth + 1)
                          for k, v in value.items())
         elif isinstance(value, list):
             stack.extend((v, f"{where}[{i}]", depth + 1) for i, v in enumerate(value))
+        elif isinstance(value, int) and not -2**63 <= value < 2**63:
+            # TOML integers are 64-bit; tomllib reads any size, and float() of it overflows
+            raise ConfigError(f"{source}: {where[:80]}: an integer of {len(str(abs(value)))}"
+                              " digits is beyond the 64-bit range of TOML integers")
 
 
 def design_trajectories(analysis, n: int) -> int:
