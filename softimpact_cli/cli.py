@@ -8,6 +8,7 @@ from __future__ import annotations
 import functools
 import json
 import sys
+import warnings
 from pathlib import Path
 
 import click
@@ -38,7 +39,9 @@ def _open(path: str):
     if not p.is_file():
         raise ConfigError(f"{path}: no such result file")
     try:
-        ds = open_result(p)
+        with warnings.catch_warnings():  # a foreign HDF5 file: the reader's warnings are noise
+            warnings.simplefilter("ignore")
+            ds = open_result(p)
     except Exception as exc:  # any reader failure is the file's fault, said in one line
         raise ConfigError(f"{path}: not a softimpact result file ({exc.__class__.__name__})"
                           ) from None
