@@ -12,8 +12,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 from ..expressions import parse_multiple
+from .limits import MAX_INITIAL_CONDITIONS, MAX_SEED
 from .reader import ConfigError, Section
-from .sweep import MAX_INITIAL_CONDITIONS, MAX_SEED
 
 DESIGN_AXES = ("d", "phi", "k_c", "c_c")
 

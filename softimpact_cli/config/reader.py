@@ -176,9 +176,7 @@ def _probe(target: Path, where: str) -> None:
         missing.append(parent)
         parent = parent.parent
     if not parent.is_dir():
-        blocked = missing[-1] if missing else target.parent
-        raise ConfigError(f"{where}: cannot create directory {blocked}: {parent} is not a "
-                          "directory")
+        raise ConfigError(f"{where}: cannot write {target}: {parent} is not a directory")
     created: list[Path] = []
     try:
         for folder in reversed(missing):

@@ -20,14 +20,21 @@ import numpy as np
 
 from ..expressions import parse_multiple
 from ..systems import LAWS, MODELS, System, get_system
-from .reader import ConfigError, Section, did_you_mean, output_path, positive
-from .sweep import (
+from .limits import (
+    MAX_NESTING,
     MAX_SEED,
     MAX_TRAJECTORIES,
+    MAX_TRAJECTORY_SAMPLES,
+    check_nesting,
+    design_trajectories,
+    parameter_problem,
+    t0_problem,
+)
+from .reader import ConfigError, Section, did_you_mean, output_path, positive
+from .sweep import (
     CatalogueSettings,
     Grid,
     InitialConditions,
-    _t0_problem,
     read_box,
     read_catalogue,
     read_grid,
@@ -38,12 +45,6 @@ ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bi
                   "map", "design")
 SWEEP_KINDS = ("basins", "stability", "map")
 METHODS = ("auto", "rk4", "dopri5", "rodas4", "stiff")
-
-# Bounds that keep every count and every float the kernels see in range (issue 20):
-MAX_PARAMETER = 1e9  # |value| of any model or coupling parameter
-W_RANGE = (1e-3, 1e3)  # forcing frequency: the period 2 pi / w stays representable
-MAX_TRAJECTORY_SAMPLES = 10_000_000  # periods x samples_per_period of a trajectory
-MAX_NESTING = 8  # tables and arrays inside each other (scenes need 4)
 
 
 @dataclass(frozen=True)
@@ -166,8 +167,9 @@ def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
     body_params = [p for p in system.parameters if p.name not in ("d", "phi", "k_c", "c_c")]
     values: dict[str, Any] = {}
     for param in body_params:
-        values[param.name] = sec.number(param.name, param.default,
-                                        lambda v, p=param: p.check(v) or _bound(p.name, v))
+        values[param.name] = sec.number(
+            param.name, param.default,
+            lambda v, p=param: p.check(v) or parameter_problem(p.name, v))
     sec.finish(("model", "bodies") + tuple(p.name for p in body_params))
     return system, values
 
@@ -181,11 +183,13 @@ def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any
     for param in system.parameters:
         if param.name == "phi":
             values["phi"] = sec.multiple("phi", param.default, "pi", math.pi)
-            if _bound("phi", values["phi"]):
-                raise sec.fail("phi", f"{_bound('phi', values['phi'])}, got {values['phi']!r}")
+            problem = parameter_problem("phi", values["phi"])
+            if problem:
+                raise sec.fail("phi", f"{problem}, got {values['phi']!r}")
         elif param.name in ("d", "k_c", "c_c"):
-            values[param.name] = sec.number(param.name, param.default,
-                                            lambda v, p=param: p.check(v) or _bound(p.name, v))
+            values[param.name] = sec.number(
+                param.name, param.default,
+                lambda v, p=param: p.check(v) or parameter_problem(p.name, v))
     values["law"] = sec.choice("law", "paper", LAWS)
     sec.finish(("d", "phi", "k_c", "c_c", "law"))
 
@@ -343,7 +347,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     except RecursionError:  # tomllib recurses once per nested array or inline table
         raise ConfigError(f"{source}: tables or arrays nested too deeply; at most "
                           f"{MAX_NESTING} levels") from None
-    _check_nesting(source, doc)
+    check_nesting(source, doc)
     for name in doc:
         if name not in SECTIONS or not isinstance(doc[name], dict):
             hint = did_you_mean(name, SECTIONS)
@@ -427,59 +431,20 @@ def _check_axis(system: System, axis: str, value: float, period: float) -> str |
     if axis == "t0":
         if value < 0:
             return "must be >= 0"
-        return _t0_problem(value, period)
+        return t0_problem(value, period)
     for param in system.parameters:
         if param.name == axis:
-            return param.check(value) or _bound(axis, value)
+            return param.check(value) or parameter_problem(axis, value)
     return None
-
-
-def _bound(name: str, value: float) -> str | None:
-    """The range every parameter keeps (beyond the model's own checks)."""
-    if name == "w" and not W_RANGE[0] <= value <= W_RANGE[1]:
-        return f"must be in [{W_RANGE[0]:g}, {W_RANGE[1]:g}]"
-    if abs(value) > MAX_PARAMETER:
-        return f"must be within +-{MAX_PARAMETER:g}"
-    return None
-
-
 
 
 def _read_t0(sec: Section, period: float) -> float:
     """[analysis] t0: a time in T-multiples, at most MAX_T0_PERIODS periods from 0."""
     t0 = sec.multiple("t0", 0.0, "T", period)
-    problem = _t0_problem(t0, period)
+    problem = t0_problem(t0, period)
     if problem:
         raise sec.fail("t0", f"{problem}, got {t0!r}")
     return t0
-
-
-def _check_nesting(source: str, doc: dict) -> None:
-    """Refuse tables and arrays nested deeper than MAX_NESTING (iteratively: no recursion)
-    and integers beyond 64 bits."""
-    stack: list[tuple[Any, str, int]] = [(v, f"[{k}]", 1) for k, v in doc.items()]
-    while stack:
-        value, where, depth = stack.pop()
-        if depth > MAX_NESTING:
-            raise ConfigError(f"{source}: {where[:80]}: tables or arrays nested more than "
-                              f"{MAX_NESTING} levels deep")
-        if isinstance(value, dict):
-            stack.extend((v, f"{where} {k}" if depth == 1 else f"{where}.{k}", depth + 1)
-                         for k, v in value.items())
-        elif isinstance(value, list):
-            stack.extend((v, f"{where}[{i}]", depth + 1) for i, v in enumerate(value))
-        elif isinstance(value, int) and not -2**63 <= value < 2**63:
-            # TOML integers are 64-bit; tomllib reads any size, and float() of it overflows
-            raise ConfigError(f"{source}: {where[:80]}: an integer of {len(str(abs(value)))}"
-                              " digits is beyond the 64-bit range of TOML integers")
-
-
-def design_trajectories(analysis, n: int) -> int:
-    """Upper bound of the trajectories a design runs (see ``analysis.design``)."""
-    screen = min(analysis.screen_n, n)
-    robust = min(analysis.robust_n or n, n)
-    perturbed = 2 * analysis.perturbation_steps * len(analysis.bounds)
-    return analysis.candidates * screen + analysis.refine * n + perturbed * robust + 2 * n
 
 
 QUICK_PLANE = 24  # --quick: largest plane resolution per axis
@@ -528,5 +493,6 @@ def load_scene(path: str | os.PathLike) -> Scene:
     except IsADirectoryError:
         raise ConfigError(f"{path}: is a directory, not a scene file") from None
     except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{path}: cannot read scene file ({exc.__class__.__name__})") from None
+        reason = getattr(exc, "strerror", None) or exc.__class__.__name__
+        raise ConfigError(f"{path}: cannot read scene file ({reason})") from None
     return parse_scene(text, str(path))

@@ -13,22 +13,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .limits import (
+    MAX_GRID_VALUES,
+    MAX_INITIAL_CONDITIONS,
+    MAX_SEED,
+    t0_problem,
+)
 from .reader import ConfigError, Section, positive
 
 GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
 GRID_UNITS = {"d": "1", "phi": "rad", "k_c": "1", "c_c": "1", "t0": "1"}
-MAX_GRID_VALUES = 1_000_000  # values of one grid axis, and grid points in all
-MAX_INITIAL_CONDITIONS = 10_000_000  # initial conditions of a sweep (plane or random)
-MAX_TRAJECTORIES = 10_000_000  # grid points x initial conditions of one sweep
-MAX_SEED = 2**63 - 1  # seeds are stored as int64 attributes
-MAX_T0_PERIODS = 1_000_000  # a start time is at most this many forcing periods
-
-
-def _t0_problem(t0: float, period: float) -> str | None:
-    """Past ~1e18 periods the kernels' period count overflows int64; far less is useful."""
-    if abs(t0) > MAX_T0_PERIODS * period:
-        return f"must be at most {MAX_T0_PERIODS} forcing periods ({MAX_T0_PERIODS}*T)"
-    return None
 
 
 @dataclass(frozen=True)
@@ -332,7 +326,7 @@ def read_initial_conditions(source: str, doc: dict, names: tuple[str, ...], peri
             t0 = None
         else:
             t0 = sec.multiple("t0", 0.0, "T", period)
-            problem = "must be >= 0" if t0 < 0 else _t0_problem(t0, period)
+            problem = "must be >= 0" if t0 < 0 else t0_problem(t0, period)
             if problem:
                 raise sec.fail("t0", f"{problem}, got {t0!r}")
     if kind == "plane":

@@ -22,8 +22,13 @@ from pathlib import Path
 import pytest
 
 from softimpact_cli.config import SWEEP_KINDS, ConfigError, check_writable, parse_scene
-from softimpact_cli.config.scene import MAX_PARAMETER, MAX_TRAJECTORY_SAMPLES
-from softimpact_cli.config.sweep import MAX_GRID_VALUES, MAX_INITIAL_CONDITIONS, MAX_TRAJECTORIES
+from softimpact_cli.config.limits import (
+    MAX_GRID_VALUES,
+    MAX_INITIAL_CONDITIONS,
+    MAX_PARAMETER,
+    MAX_TRAJECTORIES,
+    MAX_TRAJECTORY_SAMPLES,
+)
 from softimpact_cli.sweep.plan import Plan, default_chunk_size
 
 ROOT = Path(__file__).parents[2]

@@ -46,8 +46,8 @@ def assert_one_line_error(proc, *words):
 def test_probe_reports_the_true_reason_and_leaves_nothing(tmp_path):
     blocker = tmp_path / "file"
     blocker.write_text("x")
-    with pytest.raises(ConfigError, match=f"cannot create directory {blocker}/sub: {blocker} "
-                                          "is not a directory"):
+    with pytest.raises(ConfigError, match=f"cannot write {blocker}/sub/x.h5: {blocker} is "
+                                          "not a directory"):
         check_writable(blocker / "sub" / "x.h5", "s.toml")
     check_writable(tmp_path / "a" / "b" / "x.h5", "s.toml")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]  # probe removed a/b
@@ -131,4 +131,4 @@ def test_trailing_slash_writes_into_the_directory_and_plot_checks_first(tmp_path
     blocker = tmp_path / "blocker"
     blocker.write_text("")
     assert_one_line_error(run_cli("plot", "trajectory", result, "-o", blocker / "f.png"),
-                          f"cannot create directory {blocker}")
+                          f"cannot write {blocker / 'f.png'}: {blocker} is not a directory")
