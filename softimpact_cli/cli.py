@@ -8,11 +8,12 @@ from __future__ import annotations
 import functools
 import json
 import sys
+import warnings
 from pathlib import Path
 
 import click
 
-from .config import ConfigError, check_writable, load_scene
+from .config import ConfigError, check_writable, load_scene, result_path
 
 
 def _user_errors(func):
@@ -33,13 +34,21 @@ def _open(path: str):
     from .store import open_result
 
     p = Path(path)
+    if p.is_dir():
+        raise ConfigError(f"{path}: is a directory, not a result file")
     if not p.is_file():
         raise ConfigError(f"{path}: no such result file")
     try:
-        return open_result(p)
+        with warnings.catch_warnings():  # a foreign HDF5 file: the reader's warnings are noise
+            warnings.simplefilter("ignore")
+            ds = open_result(p)
     except Exception as exc:  # any reader failure is the file's fault, said in one line
         raise ConfigError(f"{path}: not a softimpact result file ({exc.__class__.__name__})"
                           ) from None
+    if "analysis" not in ds.attrs or "scene_text" not in ds.attrs:
+        raise ConfigError(f"{path}: not a softimpact result file (an HDF5 file without the "
+                          "'analysis' and 'scene_text' attributes softimpact writes)")
+    return ds
 
 
 def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
@@ -128,9 +137,8 @@ def _scheduler(ctx, param, value):
 
 
 @main.command()
-@click.argument("scene", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Result file (overrides [output] path).")
+@click.argument("scene")
+@click.option("-o", "--output", help="Result file (overrides [output] path).")
 @click.option("--overwrite", is_flag=True, help="Replace an existing result file.")
 @click.option("--resume", is_flag=True, help="Finish an interrupted sweep of the same scene.")
 @click.option("--workers", type=click.IntRange(min=1), default=None,
@@ -190,7 +198,7 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     if resolution:
         sc = quick_scene(sc, plane=resolution, samples=10**12, flag=f"--resolution {resolution}",
                          axis=None)
-    out = Path(output) if output else sc.output
+    out = result_path(sc, output)
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
@@ -253,11 +261,10 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
 
 
 @main.command()
-@click.argument("scene", type=click.Path(dir_okay=False))
+@click.argument("scene")
 @click.option("--target", default=None, help="Solution to keep, e.g. 'L1^1 R1-0^1' "
               "(overrides [analysis] target).")
-@click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Result file (overrides [output] path).")
+@click.option("-o", "--output", help="Result file (overrides [output] path).")
 @click.option("--overwrite", is_flag=True, help="Replace an existing result file.")
 @click.option("--workers", type=click.IntRange(min=1), default=None,
               help="Local worker processes (default: all cores).")
@@ -287,7 +294,7 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
                           f"got {sc.analysis.kind!r}")
     sc = with_target(sc, target) if target is not None else sc
     sc = quick_scene(sc) if quick else sc
-    out = Path(output) if output else sc.output
+    out = result_path(sc, output)
     check_writable(out, scene if not output else "command line",
                    "-o/--output" if output else "[output] path")
     _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, False)
@@ -316,7 +323,7 @@ def _format_check(report: dict) -> str:
 
 
 @main.command()
-@click.argument("scene", type=click.Path(dir_okay=False))
+@click.argument("scene")
 @click.option("--sample", type=click.IntRange(min=1), default=200, show_default=True,
               help="Trajectories (sweeps) or phases (dcrit) rerun.")
 @click.option("--seed", type=int, default=0, show_default=True)
@@ -375,7 +382,7 @@ def _draw(result: str, output: str, kind: str, draw, complete: bool = False,
     if not ok or (complete and int(ds.attrs.get("complete", 0)) != 1):
         what = expected or (f"a complete {kind} result" if complete else f"a {kind} result")
         raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not {what}")
-    check_writable(Path(output), "command line", "-o/--output")
+    check_writable(output, "command line", "-o/--output")
     try:
         click.echo(f"figure -> {draw(ds)}")
     except ValueError as exc:
@@ -383,8 +390,8 @@ def _draw(result: str, output: str, kind: str, draw, complete: bool = False,
 
 
 @plot.command("trajectory")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @click.option("--last-periods", type=click.IntRange(min=1), default=None,
@@ -398,8 +405,8 @@ def plot_trajectory_cmd(result, output, dpi, last_periods):
 
 
 @plot.command("basins")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @click.option("--max-panels", type=click.IntRange(min=1), default=36, show_default=True,
@@ -415,8 +422,8 @@ def plot_basins_cmd(result, output, dpi, max_panels):
 
 
 @plot.command("dcrit")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @click.option("--combination", default=None,
@@ -437,8 +444,8 @@ def plot_dcrit_cmd(result, output, dpi, combination):
 
 
 @plot.command("stability")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @click.option("--against", type=click.Choice(["d", "phi", "k_c", "c_c", "t0"]), default=None,
@@ -458,8 +465,8 @@ def plot_stability_cmd(result, output, dpi, against):
 
 
 @plot.command("bifurcation")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @_user_errors
@@ -471,8 +478,8 @@ def plot_bifurcation_cmd(result, output, dpi):
 
 
 @plot.command("map")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @_user_errors
@@ -484,8 +491,8 @@ def plot_map_cmd(result, output, dpi):
 
 
 @plot.command("design")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @_user_errors
@@ -498,8 +505,8 @@ def plot_design_cmd(result, output, dpi):
 
 
 @plot.command("catalogue")
-@click.argument("result", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.argument("result")
+@click.option("-o", "--output", required=True,
               help="Figure file (.png, .pdf, .svg).")
 @_dpi_option
 @_user_errors
@@ -511,9 +518,9 @@ def plot_catalogue_cmd(result, output, dpi):
 
 
 @main.command()
-@click.argument("result", type=click.Path(dir_okay=False))
+@click.argument("result")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
-@click.option("--compare", type=click.Path(dir_okay=False), default=None,
+@click.option("--compare", default=None,
               help="A stability result: compare RESULT's plane basin shares with its 4-D "
                    "basin stability at common parameter points.")
 @_user_errors

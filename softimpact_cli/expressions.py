@@ -30,7 +30,10 @@ def parse_multiple(value: object, symbol: str, unit: float) -> float:
     if isinstance(value, bool):
         raise ValueError(f"must be a number or a string like '{symbol}', 'a*{symbol}/b'")
     if isinstance(value, int | float):
-        result = float(value)
+        try:
+            result = float(value)
+        except OverflowError:  # an integer beyond the float range
+            raise ValueError(f"{value!r} is not finite") from None
     elif isinstance(value, str):
         text = value.replace(" ", "")
         pattern = _PATTERNS.setdefault(symbol, _pattern(symbol))

@@ -1,5 +1,6 @@
 import math
 import textwrap
+from pathlib import Path
 
 import pytest
 
@@ -114,3 +115,116 @@ def test_indented_toml_is_read():
         [analysis]
         state = [0.0, 0.0, 0.0, 0.0]
     """))
+
+
+# ---------------------------------------------------------------- sizes and bounds (issue 20)
+
+SWEEP = """
+[system]
+model = "duffing"
+{system}
+[analysis]
+kind = "basins"
+[grid]
+{grid}
+[initial_conditions]
+kind = "plane"
+axes = ["x1", "x2"]
+ranges = [[-1.0, 1.0], [-1.0, 1.0]]
+resolution = {resolution}
+{ic}
+"""
+
+
+def sweep_scene(system="", grid="", resolution="[4, 4]", ic=""):
+    return SWEEP.format(system=system, grid=grid, resolution=resolution, ic=ic)
+
+
+def trajectory_scene(analysis="", integrator="", system=""):
+    return (f"[system]\nmodel = 'duffing'\n{system}\n[integrator]\n{integrator}\n"
+            f"[analysis]\nstate = [1.0, 0.0, -1.0, 0.0]\n{analysis}\n")
+
+
+SIZE_ERRORS = {
+    # a grid axis of 1e9 values: refused before np.linspace builds it
+    "num 1e9": (sweep_scene(grid="d = {start = 1.0, stop = 2.0, num = 1000000000}"),
+                "[grid] d.num", "at most 1000000"),
+    "num 2e6": (sweep_scene(grid="d = {start = 1.0, stop = 2.0, num = 2000000}"),
+                "[grid] d.num", "at most 1000000"),
+    # 65536^4 = 2^64 grid points: np.prod gave 0
+    "65536^4 grid": (sweep_scene(grid="\n".join(f"{a} = {{start = 1.0, stop = 2.0, num = 65536}}"
+                                                for a in ("d", "phi", "k_c", "c_c"))),
+                     "[grid]", "at most 1000000"),
+    "step overflow": (sweep_scene(grid="d = {start = 0.0, stop = 1e308, step = 1e-308}"),
+                      "[grid] d", "at most 1000000"),
+    "resolution 2^32": (sweep_scene(resolution="[4294967296, 4294967296]"),
+                        "[initial_conditions] resolution", "at most 10000000"),
+    "trajectories": (sweep_scene(grid="d = {start = 1.0, stop = 2.0, num = 1000}",
+                                 resolution="[1000, 1000]"),
+                     "[grid]/[initial_conditions]", "at most 10000000 trajectories per sweep"),
+    "periods 1e7": (trajectory_scene("periods = 10000000"), "[analysis] periods",
+                    "at most 10000000"),
+    "t0 1e20": (trajectory_scene("t0 = 1e20"), "[analysis] t0", "at most 1000000 forcing"),
+    "t0 1e308*T": (trajectory_scene("t0 = '1e308*T'"), "[analysis] t0", "not finite"),
+    "steps_per_period 2^40": (trajectory_scene(integrator="steps_per_period = 1099511627776"),
+                              "[integrator] steps_per_period", "in 4..1000000"),
+    "w 1e300": (trajectory_scene(system="w = 1e300"), "[system] w", "[0.001, 1000]"),
+    "d 1e300": (trajectory_scene() + "[coupling]\nd = 1e300\n", "[coupling] d", "+-1e+09"),
+    "phi 1e300": (trajectory_scene() + "[coupling]\nphi = '1e300*pi'\n", "[coupling] phi",
+                  "+-1e+09"),
+    "huge integer": (trajectory_scene(system="F = 100000000000000000000000000"), "[system] F",
+                     "64-bit"),
+    "nested arrays": (trajectory_scene(system="F = " + "[" * 20 + "]" * 20), "[system] F",
+                      "nested"),
+    "nested deeper than tomllib": (trajectory_scene(system="F = " + "[" * 5000 + "]" * 5000),
+                                   "nested too deeply", ""),
+    "seed 2^63": (sweep_scene().replace('kind = "plane"', 'kind = "random"\nseed = '
+                                        '9223372036854775807\nn = 4\nbox = {x1 = [0, 1], '
+                                        'v1 = [0, 1], x2 = [0, 1], v2 = [0, 1]}')
+                  .replace("axes = [\"x1\", \"x2\"]\nranges = [[-1.0, 1.0], [-1.0, 1.0]]\n"
+                           "resolution = [4, 4]\n", ""), None, None),
+    "NUL in path": (trajectory_scene() + "[output]\npath = \"a\\u0000b.h5\"\n",
+                    "[output] path", "NUL"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SIZE_ERRORS))
+def test_sizes_are_bounded_before_allocating(name):
+    text, where, what = SIZE_ERRORS[name]
+    if where is None:  # accepted: the largest seed TOML can hold
+        assert parse_scene(text, "s.toml").initial_conditions.seed == 2**63 - 1
+        return
+    with pytest.raises(ConfigError) as info:
+        parse_scene(text, "s.toml")
+    msg = str(info.value)
+    assert msg.startswith("s.toml: ") and "\n" not in msg, msg
+    assert where in msg and what in msg, msg
+
+
+def test_design_sample_count_is_bounded():
+    text = (Path(__file__).parents[1] / "configs" / "design_duffing.toml").read_text()
+    with pytest.raises(ConfigError, match=r"\[initial_conditions\] n: must be in 1..10000000"):
+        parse_scene(text.replace("n = 1000\n", "n = 1000000000\n"), "d.toml")
+    with pytest.raises(ConfigError, match="at most 10000000"):  # 100000 x 10**6 screened
+        parse_scene(text.replace("n = 1000\n", "n = 1000000\n").replace(
+            "candidates = 48", "candidates = 100000").replace("screen_n = 100", "screen_n "
+                                                                "= 1000000"), "d.toml")
+
+
+def test_grid_size_is_a_python_integer():
+    scene = parse_scene(sweep_scene(grid="d = [1.0, 2.0, 3.0]\nphi = [0.0, 1.0]"), "s.toml")
+    assert scene.grid.size == 6 and isinstance(scene.grid.size, int)
+    assert scene.initial_conditions.count == 16
+
+
+def test_output_path_with_trailing_slash_is_a_directory():
+    scene = parse_scene(trajectory_scene() + "[output]\npath = \"newdir/\"\n", "runs/s.toml")
+    assert scene.output == Path("newdir/s.h5")
+
+
+def test_every_shipped_scene_parses():
+    root = Path(__file__).parents[1] / "configs"
+    scenes = sorted(root.glob("*.toml")) + sorted(root.glob("figures/*.toml"))
+    assert len(scenes) >= 20
+    for path in scenes:
+        load_scene(path)

@@ -21,10 +21,11 @@ from .scene import (
     load_scene,
     parse_scene,
     quick,
+    result_path,
 )
 from .sweep import GRID_AXES, GRID_UNITS, CatalogueSettings, Grid, InitialConditions
 
 __all__ = ["ANALYSIS_KINDS", "GRID_AXES", "GRID_UNITS", "SWEEP_KINDS", "CatalogueAnalysis",
            "CatalogueSettings", "ConfigError", "Grid", "InitialConditions",
            "IntegratorSettings", "Scene", "SweepAnalysis", "TrajectoryAnalysis",
-           "check_writable", "load_scene", "parse_scene", "quick"]
+           "check_writable", "load_scene", "parse_scene", "quick", "result_path"]

@@ -12,6 +12,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 from ..expressions import parse_multiple
+from .limits import MAX_INITIAL_CONDITIONS, MAX_SEED
 from .reader import ConfigError, Section
 
 DESIGN_AXES = ("d", "phi", "k_c", "c_c")
@@ -135,9 +136,10 @@ def read_design(sec: Section, values: Mapping, check_axis) -> DesignAnalysis:
     candidates = sec.integer("candidates", 48, 1, 100_000)
     design = DesignAnalysis(
         kind="design", target=target, bounds=bounds, candidates=candidates,
-        screen_n=sec.integer("screen_n", 100, 1),
+        screen_n=sec.integer("screen_n", 100, 1, MAX_INITIAL_CONDITIONS),
         refine=sec.integer("refine", min(4, candidates), 1, candidates),
-        robust_n=sec.integer("robust_n", 1, 1) if sec.has("robust_n") else None,
+        robust_n=(sec.integer("robust_n", 1, 1, MAX_INITIAL_CONDITIONS)
+                  if sec.has("robust_n") else None),
         perturbation=sec.number("perturbation", 0.02,
                                 lambda v: None if 0 < v < 0.5 else "must be in (0, 0.5)"),
         perturbation_steps=sec.integer("perturbation_steps", 1, 1, 10),
@@ -145,7 +147,7 @@ def read_design(sec: Section, values: Mapping, check_axis) -> DesignAnalysis:
                               lambda v: None if 0 <= v < 0.5 else "must be in [0, 0.5)"),
         phi_points=sec.integer("phi_points", 180, 8, 100_000),
         reference=reference,
-        seed=sec.integer("seed", 0, 0),
+        seed=sec.integer("seed", 0, 0, MAX_SEED),
         label_tol=sec.number("label_tol", 1e-3, lambda v: None if v > 0 else "must be > 0"),
     )
     return design

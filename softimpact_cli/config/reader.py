@@ -5,11 +5,14 @@ from __future__ import annotations
 import difflib
 import math
 import os
+import tempfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
 from ..expressions import parse_multiple
+
+MAX_PROBLEM_CHARS = 300  # longest problem text of one message
 
 
 class ConfigError(ValueError):
@@ -30,6 +33,8 @@ class Section:
 
     def fail(self, key: str | None, problem: str) -> ConfigError:
         where = f"[{self.name}]" + (f" {key}" if key else "")
+        if len(problem) > MAX_PROBLEM_CHARS:  # a huge value quoted back stays readable
+            problem = problem[:MAX_PROBLEM_CHARS] + "..."
         return ConfigError(f"{self.source}: {where}: {problem}")
 
     def has(self, key: str) -> bool:
@@ -104,16 +109,108 @@ def positive(value: float) -> str | None:
 
 
 
-def check_writable(path: Path, source: str, key: str = "[output] path") -> None:
-    """Refuse an output path that cannot be written, before any work is done."""
-    if path.is_dir():
-        raise ConfigError(f"{source}: {key}: {str(path)!r} is a directory, not a file")
-    parent = path.parent if str(path.parent) else Path(".")
-    probe = parent
-    while not probe.exists():
-        probe = probe.parent
-    if not probe.is_dir() or not os.access(probe, os.W_OK | os.X_OK):
-        raise ConfigError(f"{source}: {key}: cannot write {str(path)!r} "
-                          f"({str(probe)!r} is not a writable directory)")
-    if path.exists() and not os.access(path, os.W_OK):
-        raise ConfigError(f"{source}: {key}: cannot write {str(path)!r} (not writable)")
+# A result's sidecar files add suffixes to its name (RESULT.h5.parts, temporary and lock
+# files); 255 bytes is the usual file-system limit of one name.
+MAX_NAME_BYTES = 224
+
+
+def output_path(value: str, stem: str) -> Path:
+    """The result file named by ``value`` (an [output] path or ``-o``).
+
+    A value ending in "/" names a directory: the result is ``<value>/<stem>.h5`` there
+    (``stem``: the scene file's stem). A NUL character or an empty value is refused.
+    """
+    if not value:
+        raise ValueError("is empty; give a file path such as results/x.h5")
+    if "\0" in value:
+        raise ValueError(f"{value!r} contains a NUL character")
+    if value.endswith(("/", os.sep)):
+        return Path(value) / f"{stem}.h5"
+    return Path(value)
+
+
+def _reason(exc: OSError) -> str:
+    return exc.strerror or exc.__class__.__name__
+
+
+def check_writable(path: str | os.PathLike, source: str, key: str = "[output] path") -> None:
+    """Refuse an output path that cannot be written, before any work is done.
+
+    A real probe, not ``os.access`` (which says yes to root everywhere, /proc included):
+    the missing parent directories are created and the file itself (or, when it exists, a
+    temporary file beside it) is created and removed again; everything the probe created
+    is removed. The message is one line naming the path and the system's reason.
+    """
+    text = os.fspath(path)
+    where = f"{source}: {key}"
+    try:
+        output_path(text, "x")
+    except ValueError as exc:
+        raise ConfigError(f"{where}: {exc}") from None
+    if text.endswith(("/", os.sep)):
+        raise ConfigError(f"{where}: {text!r} ends with '/' (a directory); give a file name")
+    target = Path(text)
+    try:
+        for part in target.parts:
+            if len(os.fsencode(part)) > MAX_NAME_BYTES:
+                raise ConfigError(f"{where}: the name {part[:40]!r}... is "
+                                  f"{len(os.fsencode(part))} bytes; at most {MAX_NAME_BYTES} "
+                                  "(room for the suffixes of the files written beside it)")
+    except UnicodeEncodeError:
+        raise ConfigError(f"{where}: {text!r} cannot be encoded as a file name") from None
+    try:
+        if target.is_dir():
+            raise ConfigError(f"{where}: {text} is a directory, not a file")
+        if target.exists() and not target.is_file():
+            raise ConfigError(f"{where}: {text} exists and is not a regular file")
+        _probe(target, where)
+    except OSError as exc:  # stat of an unreachable path (ELOOP, EACCES, ...)
+        raise ConfigError(f"{where}: cannot write {text}: {_reason(exc)}") from None
+
+
+def _probe(target: Path, where: str) -> None:
+    """Create what writing ``target`` would create, then remove it again."""
+    parent = target.parent
+    missing = []
+    while not parent.exists() and parent != parent.parent:
+        missing.append(parent)
+        parent = parent.parent
+    if not parent.is_dir():
+        raise ConfigError(f"{where}: cannot write {target}: {parent} is not a directory")
+    created: list[Path] = []
+    try:
+        for folder in reversed(missing):
+            try:
+                os.mkdir(folder)
+            except OSError as exc:
+                raise ConfigError(f"{where}: cannot create directory {folder}: "
+                                  f"{_reason(exc)}") from None
+            created.append(folder)
+        if target.exists():
+            try:
+                with open(target, "r+b"):
+                    pass
+            except OSError as exc:
+                raise ConfigError(f"{where}: cannot write {target}: {_reason(exc)}") from None
+            probe = None
+            try:
+                fd, probe = tempfile.mkstemp(prefix=".softimpact-probe-", dir=target.parent)
+                os.close(fd)
+            except OSError as exc:
+                raise ConfigError(f"{where}: cannot write in {target.parent} (to replace "
+                                  f"{target.name}): {_reason(exc)}") from None
+            finally:
+                if probe is not None:
+                    os.unlink(probe)
+        else:
+            try:
+                os.close(os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644))
+            except OSError as exc:
+                raise ConfigError(f"{where}: cannot create {target}: {_reason(exc)}") from None
+            os.unlink(target)
+    finally:
+        for folder in reversed(created):
+            try:
+                os.rmdir(folder)
+            except OSError:
+                pass

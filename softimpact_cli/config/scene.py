@@ -20,7 +20,17 @@ import numpy as np
 
 from ..expressions import parse_multiple
 from ..systems import LAWS, MODELS, System, get_system
-from .reader import ConfigError, Section, did_you_mean, positive
+from .limits import (
+    MAX_NESTING,
+    MAX_SEED,
+    MAX_TRAJECTORIES,
+    MAX_TRAJECTORY_SAMPLES,
+    check_nesting,
+    design_trajectories,
+    parameter_problem,
+    t0_problem,
+)
+from .reader import ConfigError, Section, did_you_mean, output_path, positive
 from .sweep import (
     CatalogueSettings,
     Grid,
@@ -157,7 +167,9 @@ def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
     body_params = [p for p in system.parameters if p.name not in ("d", "phi", "k_c", "c_c")]
     values: dict[str, Any] = {}
     for param in body_params:
-        values[param.name] = sec.number(param.name, param.default, param.check)
+        values[param.name] = sec.number(
+            param.name, param.default,
+            lambda v, p=param: p.check(v) or parameter_problem(p.name, v))
     sec.finish(("model", "bodies") + tuple(p.name for p in body_params))
     return system, values
 
@@ -171,8 +183,13 @@ def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any
     for param in system.parameters:
         if param.name == "phi":
             values["phi"] = sec.multiple("phi", param.default, "pi", math.pi)
+            problem = parameter_problem("phi", values["phi"])
+            if problem:
+                raise sec.fail("phi", f"{problem}, got {values['phi']!r}")
         elif param.name in ("d", "k_c", "c_c"):
-            values[param.name] = sec.number(param.name, param.default, param.check)
+            values[param.name] = sec.number(
+                param.name, param.default,
+                lambda v, p=param: p.check(v) or parameter_problem(p.name, v))
     values["law"] = sec.choice("law", "paper", LAWS)
     sec.finish(("d", "phi", "k_c", "c_c", "law"))
 
@@ -182,12 +199,12 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
     d = IntegratorSettings()
     settings = IntegratorSettings(
         method=sec.choice("method", d.method, METHODS),
-        steps_per_period=sec.integer("steps_per_period", d.steps_per_period, 4),
+        steps_per_period=sec.integer("steps_per_period", d.steps_per_period, 4, 1_000_000),
         locate_switches=sec.boolean("locate_switches", d.locate_switches),
         rtol=sec.number("rtol", d.rtol,
                         lambda v: None if 1e-14 <= v < 1 else "must be in [1e-14, 1)"),
         atol=sec.number("atol", d.atol, positive),
-        max_periods=sec.integer("max_periods", d.max_periods, 1),
+        max_periods=sec.integer("max_periods", d.max_periods, 1, 10_000_000),
         max_orbit_period=sec.integer("max_orbit_period", d.max_orbit_period, 1, 1000),
         convergence_tol=sec.number("convergence_tol", d.convergence_tol, positive),
         capture_tol=sec.number("capture_tol", d.capture_tol,
@@ -197,9 +214,10 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
                              lambda v: None if v >= 0 else "must be >= 0 (0: no cells)"),
         cell_hits=sec.integer("cell_hits", d.cell_hits, 1, 1000),
         divergence_bound=sec.number("divergence_bound", d.divergence_bound, positive),
-        max_steps_per_period=sec.integer("max_steps_per_period", d.max_steps_per_period, 10),
+        max_steps_per_period=sec.integer("max_steps_per_period", d.max_steps_per_period, 10,
+                                         100_000_000),
         max_switches_per_period=sec.integer("max_switches_per_period",
-                                            d.max_switches_per_period, 2),
+                                            d.max_switches_per_period, 2, 100_000_000),
     )
     sec.finish()
     return settings
@@ -229,17 +247,21 @@ def _read_analysis(source: str, doc: dict, system: System, period: float, values
             kind=kind,
             state=_read_state(sec, "state", system),
             periods=sec.integer("periods", 200, 1, 10_000_000),
-            t0=sec.multiple("t0", 0.0, "T", period),
+            t0=_read_t0(sec, period),
             samples_per_period=sec.integer("samples_per_period", 64, 1, 100_000),
         )
+        samples = analysis.periods * analysis.samples_per_period
+        if samples > MAX_TRAJECTORY_SAMPLES:  # the recorded states: samples x dim floats
+            raise sec.fail("periods", f"periods x samples_per_period = {samples} recorded "
+                                      f"samples; at most {MAX_TRAJECTORY_SAMPLES}")
     elif kind == "catalogue":
         analysis = CatalogueAnalysis(
             kind=kind,
             box=read_box(sec, "box", ("x", "v"), system.extra["catalogue_box"]),
             grid=sec.integer("grid", 16, 0, 2000),
             random=sec.integer("random", 200, 0, 10_000_000),
-            seed=sec.integer("seed", 0, 0),
-            t0=sec.multiple("t0", 0.0, "T", period),
+            seed=sec.integer("seed", 0, 0, MAX_SEED),
+            t0=_read_t0(sec, period),
             match_tol=sec.number("match_tol", 1e-3, positive),
         )
         if analysis.grid == 0 and analysis.random == 0:
@@ -264,6 +286,10 @@ def _read_analysis(source: str, doc: dict, system: System, period: float, values
         start = sec.number("start", None)
         stop = sec.number("stop", None)
         step = sec.number("step", None, positive)
+        for key, v in (("start", start), ("stop", stop)):
+            if _check_axis(system, "d", v, period):
+                raise sec.fail(key, f"{_check_axis(system, 'd', v, period)} (a distance d), "
+                                    f"got {v!r}")
         if start == stop:
             raise sec.fail("stop", "must differ from start")
         if abs(stop - start) / step > 100_000:
@@ -286,7 +312,7 @@ def _read_analysis(source: str, doc: dict, system: System, period: float, values
             raise sec.fail("kind", "a design needs a pair ([system] bodies = 2)")
         from .design import read_design
 
-        analysis = read_design(sec, values, lambda axis, v: _check_axis(system, axis, v))
+        analysis = read_design(sec, values, lambda axis, v: _check_axis(system, axis, v, period))
     elif kind in SWEEP_KINDS:
         analysis = SweepAnalysis(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
     sec.finish()
@@ -294,13 +320,18 @@ def _read_analysis(source: str, doc: dict, system: System, period: float, values
 
 
 def _read_output(source: str, doc: dict, base: Path) -> Path:
+    """[output] path; a value ending in "/" names a directory: the result is then
+    ``<directory>/<scene stem>.h5`` (``path = "newdir/"`` writes newdir/<stem>.h5)."""
     sec = Section(source, "output", doc.get("output", {}))
     stem = Path(source).stem if source != "<string>" else "scene"
     value = sec.raw("path", f"results/{stem}.h5")
     if not isinstance(value, str) or not value:
         raise sec.fail("path", f"must be a file path string, got {value!r}")
     sec.finish(("path",))
-    return Path(value)
+    try:
+        return output_path(value, stem)
+    except ValueError as exc:
+        raise sec.fail("path", str(exc)) from None
 
 
 SECTIONS = ("system", "coupling", "integrator", "analysis", "output", "grid",
@@ -313,6 +344,10 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{source}: invalid TOML: {exc}") from None
+    except RecursionError:  # tomllib recurses once per nested array or inline table
+        raise ConfigError(f"{source}: tables or arrays nested too deeply; at most "
+                          f"{MAX_NESTING} levels") from None
+    check_nesting(source, doc)
     for name in doc:
         if name not in SECTIONS or not isinstance(doc[name], dict):
             hint = did_you_mean(name, SECTIONS)
@@ -324,6 +359,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     integrator = _read_integrator(source, doc)
     period = 2.0 * math.pi / values["w"]
     analysis = _read_analysis(source, doc, system, period, values)
+    check = lambda axis, v: _check_axis(system, axis, v, period)  # noqa: E731
     output = _read_output(source, doc, Path("."))
     grid = initial = catalogue = None
     if analysis.kind == "bifurcation":
@@ -337,8 +373,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
             raise ConfigError(f"{source}: [grid] {sorted(set(grid_doc) - {'phi'})[0]}: "
                               "critical distances sweep phi only")
         if "phi" in grid_doc:
-            grid = read_grid(source, doc, values, system.bodies, period,
-                             lambda axis, v: _check_axis(system, axis, v))
+            grid = read_grid(source, doc, values, system.bodies, period, check)
             phis = grid.axes["phi"]
         else:
             phis = tuple(np.linspace(0.0, 2 * np.pi, 256, endpoint=False).tolist())
@@ -362,12 +397,21 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
             if (getattr(analysis, key) or 0) > initial.count:
                 raise ConfigError(f"{source}: [analysis] {key}: must be <= [initial_conditions]"
                                   f" n = {initial.count}, got {getattr(analysis, key)}")
+        total = design_trajectories(analysis, initial.count)
+        if total > MAX_TRAJECTORIES:
+            raise ConfigError(f"{source}: [analysis]/[initial_conditions]: the design runs up "
+                              f"to {total} trajectories (candidates x screen_n + refine x n + "
+                              f"perturbed points x robust_n + n); at most {MAX_TRAJECTORIES}")
         catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
     elif analysis.kind in SWEEP_KINDS:
-        grid = read_grid(source, doc, values, system.bodies, period,
-                         lambda axis, v: _check_axis(system, axis, v))
+        grid = read_grid(source, doc, values, system.bodies, period, check)
         initial = read_initial_conditions(source, doc, system.state_names, period,
                                           "t0" in grid.swept)
+        total = grid.size * initial.count
+        if total > MAX_TRAJECTORIES:
+            raise ConfigError(f"{source}: [grid]/[initial_conditions]: {grid.size} grid points"
+                              f" x {initial.count} initial conditions = {total} trajectories; "
+                              f"at most {MAX_TRAJECTORIES} trajectories per sweep")
         catalogue = read_catalogue(source, doc, system.extra["catalogue_box"])
     else:
         for name in ("grid", "initial_conditions", "catalogue"):
@@ -382,13 +426,25 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
                  initial_conditions=initial, catalogue=catalogue)
 
 
-def _check_axis(system: System, axis: str, value: float) -> str | None:
+def _check_axis(system: System, axis: str, value: float, period: float) -> str | None:
+    """What is wrong with ``value`` on the grid or design ``axis``, or None."""
     if axis == "t0":
-        return None if value >= 0 else "must be >= 0"
+        if value < 0:
+            return "must be >= 0"
+        return t0_problem(value, period)
     for param in system.parameters:
         if param.name == axis:
-            return param.check(value)
+            return param.check(value) or parameter_problem(axis, value)
     return None
+
+
+def _read_t0(sec: Section, period: float) -> float:
+    """[analysis] t0: a time in T-multiples, at most MAX_T0_PERIODS periods from 0."""
+    t0 = sec.multiple("t0", 0.0, "T", period)
+    problem = t0_problem(t0, period)
+    if problem:
+        raise sec.fail("t0", f"{problem}, got {t0!r}")
+    return t0
 
 
 QUICK_PLANE = 24  # --quick: largest plane resolution per axis
@@ -440,6 +496,21 @@ def quick(scene: Scene, plane: int = QUICK_PLANE, samples: int = QUICK_SAMPLES,
                    text=scene.text + f"\n# {flag}: {note}\n")
 
 
+def result_path(scene: Scene, option: str | None) -> Path:
+    """The result file of a run: ``option`` (``-o``) when given, else [output] path.
+
+    As in [output] path, a value ending in "/" names a directory, and the result is
+    ``<directory>/<scene stem>.h5``.
+    """
+    if option is None:
+        return scene.output
+    stem = Path(scene.source).stem if scene.source != "<string>" else "scene"
+    try:
+        return output_path(option, stem)
+    except ValueError as exc:
+        raise ConfigError(f"-o/--output: {exc}") from None
+
+
 def load_scene(path: str | os.PathLike) -> Scene:
     """Read and validate the scene file at ``path``."""
     path = Path(path)
@@ -450,5 +521,6 @@ def load_scene(path: str | os.PathLike) -> Scene:
     except IsADirectoryError:
         raise ConfigError(f"{path}: is a directory, not a scene file") from None
     except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{path}: cannot read scene file ({exc.__class__.__name__})") from None
+        reason = getattr(exc, "strerror", None) or exc.__class__.__name__
+        raise ConfigError(f"{path}: cannot read scene file ({reason})") from None
     return parse_scene(text, str(path))

@@ -13,11 +13,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .limits import (
+    MAX_GRID_VALUES,
+    MAX_INITIAL_CONDITIONS,
+    MAX_SEED,
+    t0_problem,
+)
 from .reader import ConfigError, Section, positive
 
 GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
 GRID_UNITS = {"d": "1", "phi": "rad", "k_c": "1", "c_c": "1", "t0": "1"}
-MAX_GRID_VALUES = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -46,7 +51,8 @@ class Grid:
 
     @property
     def size(self) -> int:
-        return int(np.prod(self.shape))
+        # Python integers: np.prod wraps around in int64 (65536**4 gives 0)
+        return math.prod(self.shape)
 
     def point(self, flat: int) -> dict[str, float]:
         """Axis values of grid point number ``flat`` (C order over the dims)."""
@@ -84,7 +90,7 @@ class InitialConditions:
     @property
     def count(self) -> int:
         if self.kind == "plane":
-            return int(np.prod(self.resolution))
+            return math.prod(self.resolution)
         if self.kind == "random":
             return self.n
         return len(self.states)
@@ -172,6 +178,8 @@ def _values(sec: Section, key: str, symbol: str | None, unit: float) -> tuple[fl
             num = raw["num"]
             if isinstance(num, bool) or not isinstance(num, int) or num < 1:
                 raise sec.fail(f"{key}.num", f"must be a whole number >= 1, got {num!r}")
+            if num > MAX_GRID_VALUES:  # before np.linspace allocates it
+                raise sec.fail(f"{key}.num", f"{num} values; at most {MAX_GRID_VALUES} per axis")
             if num > 1 and start == stop:
                 raise sec.fail(key, "start == stop with num > 1 repeats one value")
             values = tuple(np.linspace(start, stop, num).tolist())
@@ -180,14 +188,16 @@ def _values(sec: Section, key: str, symbol: str | None, unit: float) -> tuple[fl
             if step == 0 or (stop - start) * step < 0:
                 raise sec.fail(f"{key}.step", f"must be nonzero and lead from start {start:g} "
                                               f"to stop {stop:g}, got {step!r}")
-            num = int(math.floor((stop - start) / step + 1e-9)) + 1
-            if num > MAX_GRID_VALUES:
-                raise sec.fail(key, f"{num} values; at most {MAX_GRID_VALUES}")
+            span = (stop - start) / step  # inf when stop - start overflows
+            if not span < MAX_GRID_VALUES:
+                raise sec.fail(key, f"{span:.3g} steps from start to stop; at most "
+                                    f"{MAX_GRID_VALUES} values per axis")
+            num = int(math.floor(span + 1e-9)) + 1
             values = tuple((start + step * np.arange(num)).tolist())
     else:
         values = (one(raw),)
     if len(values) > MAX_GRID_VALUES:
-        raise sec.fail(key, f"{len(values)} values; at most {MAX_GRID_VALUES}")
+        raise sec.fail(key, f"{len(values)} values; at most {MAX_GRID_VALUES} per axis")
     return values
 
 
@@ -213,6 +223,10 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
                     raise sec.fail(axis, f"{problem}, got {v!r}")
     sec.finish(allowed)
     swept = tuple(axes)
+    points = math.prod(len(v) for v in axes.values())
+    if points > MAX_GRID_VALUES:
+        shape = " x ".join(str(len(v)) for v in axes.values())
+        raise sec.fail(None, f"{points} grid points ({shape}); at most {MAX_GRID_VALUES}")
     for axis in GRID_AXES:
         if axis not in axes:
             axes[axis] = (float(values.get(axis, 0.0)),) if axis != "t0" else (0.0,)
@@ -230,6 +244,8 @@ def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period
                                                             for p in panels):
         raise sec.fail("panels", "must be a non-empty list of tables like {d = 10.0, "
                                  "phi = \"pi\"}")
+    if len(panels) > MAX_GRID_VALUES:
+        raise sec.fail("panels", f"{len(panels)} panels; at most {MAX_GRID_VALUES}")
     axes: dict[str, list[float]] = {a: [] for a in GRID_AXES}
     swept = []
     for i, panel in enumerate(panels):
@@ -310,8 +326,9 @@ def read_initial_conditions(source: str, doc: dict, names: tuple[str, ...], peri
             t0 = None
         else:
             t0 = sec.multiple("t0", 0.0, "T", period)
-            if t0 < 0:
-                raise sec.fail("t0", f"must be >= 0, got {t0!r}")
+            problem = "must be >= 0" if t0 < 0 else t0_problem(t0, period)
+            if problem:
+                raise sec.fail("t0", f"{problem}, got {t0!r}")
     if kind == "plane":
         axes = sec.raw("axes", list(names[::2][:2]) if len(names) == 4 else list(names))
         if (not isinstance(axes, list) or len(axes) != 2 or any(a not in names for a in axes)
@@ -331,6 +348,9 @@ def read_initial_conditions(source: str, doc: dict, names: tuple[str, ...], peri
         if (not isinstance(res, list) or len(res) != 2
                 or any(isinstance(r, bool) or not isinstance(r, int) or r < 1 for r in res)):
             raise sec.fail("resolution", f"must be two whole numbers >= 1, got {res!r}")
+        if math.prod(res) > MAX_INITIAL_CONDITIONS:  # Python integers: no int64 wrap-around
+            raise sec.fail("resolution", f"{res[0]} x {res[1]} = {math.prod(res)} initial "
+                                         f"conditions; at most {MAX_INITIAL_CONDITIONS}")
         fixed_raw = sec.raw("fixed", {})
         if not isinstance(fixed_raw, dict):
             raise sec.fail("fixed", f"must be a table like {{v1 = 0.0}}, got {fixed_raw!r}")
@@ -349,8 +369,8 @@ def read_initial_conditions(source: str, doc: dict, names: tuple[str, ...], peri
                                  tuple(res), fixed, t0=t0)
     if kind == "random":
         box = read_box(sec, "box", names)
-        n = sec.integer("n", 1000, 1)
-        seed = sec.integer("seed", 0, 0)
+        n = sec.integer("n", 1000, 1, MAX_INITIAL_CONDITIONS)
+        seed = sec.integer("seed", 0, 0, MAX_SEED)
         sec.finish(("kind", "box", "n", "seed", "t0"))
         return InitialConditions(kind, names, box=box, n=n, seed=seed, t0=t0)
     states = sec.raw("states")
@@ -374,7 +394,7 @@ def read_catalogue(source: str, doc: dict, default_box) -> CatalogueSettings:
         box=read_box(sec, "box", ("x", "v"), default_box),
         grid=sec.integer("grid", 16, 0, 2000),
         random=sec.integer("random", 200, 0, 10_000_000),
-        seed=sec.integer("seed", 0, 0),
+        seed=sec.integer("seed", 0, 0, MAX_SEED),
         match_tol=sec.number("match_tol", 1e-3, positive),
     )
     if settings.grid == 0 and settings.random == 0:

@@ -16,9 +16,13 @@ import numpy as np
 
 from ..config import ConfigError, Scene
 
-# bytes per integrated initial condition in the result (label, period, periods_used,
-# status, max_penetration, contacts) plus the chunk files' overhead
-BYTES_PER_IC = 4 + 2 + 4 + 1 + 4 + 4 + 8
+# bytes per trajectory of the per-trajectory variables (label, status, period, periods_used,
+# contacts, max_penetration, captured, steps, stiff_steps: chunks.RESULT_FIELDS)
+BYTES_PER_IC = 4 + 1 + 2 + 4 + 4 + 4 + 1 + 4 + 4
+# labels assumed for the representative orbits (attractor_points: labels x grid points x
+# max_orbit_period x dim floats); catalogues of the study have at most a dozen
+LABELS_ESTIMATE = 16
+OVERHEAD_BYTES = 1 << 20  # catalogue, label tables, scene text, attributes, HDF5 headers
 
 
 @dataclass(frozen=True)
@@ -48,7 +52,23 @@ class Plan:
 
     @property
     def result_bytes(self) -> int:
-        return self.n_total * BYTES_PER_IC + self.n_ic * 8 * len(self.scene.system.state_names)
+        """Upper estimate of the stored result, uncompressed, counting every variable:
+        the per-trajectory arrays, the coordinates, the initial states and start times of
+        samples, the representative orbits, the map counts and a fixed overhead."""
+        sc = self.scene
+        grid, ic = sc.grid, sc.initial_conditions
+        dim = len(sc.system.state_names)
+        total = self.n_total * BYTES_PER_IC + OVERHEAD_BYTES
+        total += 8 * (grid.size * len(grid.axes) if grid.panels
+                      else sum(len(v) for v in grid.axes.values()))
+        if ic.kind == "plane":
+            total += 8 * sum(ic.resolution)
+        else:  # sample index, initial_state, per-sample t0
+            total += 8 * self.n_ic * (2 + dim)
+        total += 8 * LABELS_ESTIMATE * grid.size * sc.integrator.max_orbit_period * dim
+        if sc.analysis.kind == "map":  # predicted, found, found_nonimpacting per point
+            total += 3 * 8 * grid.size
+        return total
 
     def describe(self) -> str:
         g = self.scene.grid
@@ -57,23 +77,30 @@ class Plan:
             swept = f"panels over {', '.join(g.swept)}"
         return (f"plan: {self.n_points} grid points ({swept}) x {self.n_ic} initial "
                 f"conditions = {self.n_total} trajectories in {self.n_chunks} chunks of "
-                f"<= {self.chunk_size}; result about {_size(self.result_bytes)}")
+                f"<= {self.chunk_size}; result at most {_size(self.result_bytes)}")
 
     def check_resources(self, out: Path, source: str) -> None:
-        """Refuse a result that would not fit in memory or on disk."""
+        """Refuse a result that would not fit in memory or on disk (estimates are upper
+        bounds: the result is stored compressed). Call after ``check_writable``, which
+        finds the paths that cannot be written at all."""
         need = self.result_bytes
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
         if 3 * need > memory:
-            raise ConfigError(f"{source}: [grid]/[initial_conditions]: the result needs about "
-                              f"{_size(need)} (x3 while assembling), more than this machine's "
-                              f"{_size(memory)} memory; reduce the grid or resolution")
-        probe = out.parent if str(out.parent) else Path(".")
-        while not probe.exists():
-            probe = probe.parent
-        free = shutil.disk_usage(probe).free
+            raise ConfigError(f"{source}: [grid]/[initial_conditions]: the result needs at "
+                              f"most {_size(3 * need)} of memory while assembled, and this "
+                              f"machine has {_size(memory)}; reduce the grid or resolution")
+        folder = out.parent if str(out.parent) else Path(".")
+        while not folder.exists():
+            folder = folder.parent
+        try:
+            free = shutil.disk_usage(folder).free
+        except OSError as exc:
+            raise ConfigError(f"{out}: cannot tell the free disk space in {folder}: "
+                              f"{exc.strerror or exc.__class__.__name__}") from None
         if 2 * need > free:
-            raise ConfigError(f"{source}: [output] path: the result needs about {_size(2 * need)}"
-                              f" on disk while written; only {_size(free)} free at {probe}")
+            raise ConfigError(f"{out}: not enough disk space: the result needs at most "
+                              f"{_size(2 * need)} while written (chunk files and the final "
+                              f"file), and the file system of {folder} has {_size(free)} free")
 
 
 def _size(n: float) -> str:
