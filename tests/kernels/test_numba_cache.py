@@ -1,8 +1,11 @@
 """numba's disk cache must work across processes for kernels taking jitted functions."""
 
+import json
 import os
 import subprocess
 import sys
+
+import pytest
 
 SCRIPT = """
 import sys
@@ -52,3 +55,49 @@ def test_cache_folder_changes_when_any_kernel_source_changes(tmp_path):
     target = tmp_path / "kernels" / "switching.py"
     target.write_text(target.read_text() + "\n# edited\n")
     assert source_hash(tmp_path) != before
+
+
+CATALOGUE = """
+import json
+from numba.core import event
+from softimpact_cli.analysis.catalogue import body_catalogue, sample_states
+from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.engine import Problem
+from softimpact_cli.systems import get_system
+body = get_system("duffing", 1)
+problem = Problem(body, body.defaults(), IntegratorSettings(method="dopri5"))
+states = sample_states({"x": (-12.0, 12.0), "v": (-12.0, 12.0)}, 2, 0, 0)
+with event.install_recorder("numba:compile") as rec:
+    attractors, _ = body_catalogue(problem, states)
+compiled = sorted({e.data["dispatcher"].py_func.__qualname__ for _, e in rec.buffer})
+print(json.dumps({"compiled": compiled,
+                  "multipliers": [repr(complex(m)) for a in attractors for m in a.multipliers]}))
+"""
+
+
+def cache_files(folder):
+    return {str(p.relative_to(folder)): p.stat().st_size for p in folder.rglob("*")
+            if p.is_file()}
+
+
+@pytest.mark.slow
+def test_catalogue_in_ten_processes_stops_growing_the_cache(tmp_path):
+    """Issue 20, items 8 and 16: the catalogue's Newton refinement (variational equations)
+    compiled in every process and added one `orbit.flow` entry to the disk cache per run,
+    until numba failed with "underlying object has vanished". From the second process on,
+    nothing compiles and the cache folder stays byte for byte the same size."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    runs, sizes = [], []
+    for _ in range(10):
+        proc = subprocess.run([sys.executable, "-c", CATALOGUE], capture_output=True,
+                              text=True, env=env)
+        assert proc.returncode == 0, proc.stderr
+        runs.append(json.loads(proc.stdout))
+        sizes.append(cache_files(tmp_path))
+    first, warm = runs[0], runs[1:]
+    assert first["compiled"]
+    assert first["multipliers"]  # the catalogue refined at least one orbit
+    for run in warm:
+        assert run["compiled"] == []
+        assert run["multipliers"] == first["multipliers"]
+    assert all(s == sizes[0] for s in sizes[1:])
