@@ -129,6 +129,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     check_writable(out, scene if not output else "command line", key)
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     _check_rk4_step(sc, strict)
+    from .warmup import announce_compilation
+    announce_compilation(sc)
     if sc.analysis.kind in SWEEP_KINDS:
         from .sweep import run_sweep
 
@@ -204,6 +206,8 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
     out = Path(output) if output else sc.output
     check_writable(out, scene if not output else "command line",
                    "-o/--output" if output else "[output] path")
+    from .warmup import announce_compilation
+    announce_compilation(sc)
     _run_design(sc, out, overwrite, workers, scheduler, quiet)
 
 
@@ -241,6 +245,8 @@ def check(scene, sample, seed, as_json):
     from .check import check_scene
 
     sc = load_scene(scene)
+    from .warmup import announce_compilation
+    announce_compilation(sc)
     try:
         report = check_scene(sc, sample, seed)
     except ValueError as exc:

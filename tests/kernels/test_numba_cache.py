@@ -60,17 +60,19 @@ def test_cache_folder_changes_when_any_kernel_source_changes(tmp_path):
 CATALOGUE = """
 import json
 from numba.core import event
+from softimpact_cli import warmup
 from softimpact_cli.analysis.catalogue import body_catalogue, sample_states
 from softimpact_cli.config import IntegratorSettings
 from softimpact_cli.engine import Problem
 from softimpact_cli.systems import get_system
+missing = warmup.missing_kernels("duffing", 1, "dopri5")
 body = get_system("duffing", 1)
 problem = Problem(body, body.defaults(), IntegratorSettings(method="dopri5"))
 states = sample_states({"x": (-12.0, 12.0), "v": (-12.0, 12.0)}, 2, 0, 0)
 with event.install_recorder("numba:compile") as rec:
     attractors, _ = body_catalogue(problem, states)
 compiled = sorted({e.data["dispatcher"].py_func.__qualname__ for _, e in rec.buffer})
-print(json.dumps({"compiled": compiled,
+print(json.dumps({"missing": missing, "compiled": compiled,
                   "multipliers": [repr(complex(m)) for a in attractors for m in a.multipliers]}))
 """
 
@@ -95,9 +97,9 @@ def test_catalogue_in_ten_processes_stops_growing_the_cache(tmp_path):
         runs.append(json.loads(proc.stdout))
         sizes.append(cache_files(tmp_path))
     first, warm = runs[0], runs[1:]
-    assert first["compiled"]
+    assert first["compiled"] and first["missing"]  # a cold cache: compiled, and announced
     assert first["multipliers"]  # the catalogue refined at least one orbit
     for run in warm:
-        assert run["compiled"] == []
+        assert run["compiled"] == [] and run["missing"] == []
         assert run["multipliers"] == first["multipliers"]
     assert all(s == sizes[0] for s in sizes[1:])
