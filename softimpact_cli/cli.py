@@ -203,6 +203,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     check_writable(out, scene if not output else "command line", key)
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     _check_rk4_step(sc, strict)
+    from .warmup import announce_compilation
+    announce_compilation(sc)
     if sc.analysis.kind in SWEEP_KINDS:
         from .interrupt import modified, sweep_kept
         from .sweep import run_sweep
@@ -297,6 +299,8 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
     out = result_path(sc, output)
     check_writable(out, scene if not output else "command line",
                    "-o/--output" if output else "[output] path")
+    from .warmup import announce_compilation
+    announce_compilation(sc)
     _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, False)
 
 
@@ -335,6 +339,8 @@ def check(scene, sample, seed, as_json):
     from .check import check_scene
 
     sc = load_scene(scene)
+    from .warmup import announce_compilation
+    announce_compilation(sc)
     try:
         report = check_scene(sc, sample, seed)
     except ValueError as exc:

@@ -9,11 +9,12 @@ from __future__ import annotations
 from ..kernels.numba_cache import stabilise
 from . import bilinear as _bilinear
 from . import duffing as _duffing
+from . import variational as _variational
 from .base import COUPLING_PARAMETERS, LAWS, Parameter, Surfaces, System
 from .bilinear import BILINEAR_BODY, BILINEAR_PAIR
 from .duffing import DUFFING_BODY, DUFFING_PAIR
 
-for _module in (_bilinear, _duffing):
+for _module in (_bilinear, _duffing, _variational):
     stabilise(_module)
 
 REGISTRY: dict[tuple[str, int], System] = {

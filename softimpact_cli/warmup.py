@@ -1,0 +1,204 @@
+"""Compile the numerical kernels ahead of time, and say so before a run that compiles them.
+
+numba compiles each kernel on first use (minutes on 2 cores) and keeps the machine code
+in a disk cache keyed by the kernel sources (``_numba_cache_dir``); later runs load it in
+a fraction of a second. :func:`announce_compilation` prints one line on stderr when the
+cache lacks a kernel the scene needs, so that the first run is not silent;
+:func:`compile_all` (``python -m softimpact_cli.warmup``, run by ``make install``) runs a
+tiny problem through every kernel signature the command line uses, so that no run compiles.
+
+The test is cheap (a few ``stat`` calls) and exact for a fresh cache: numba writes one
+index file per jitted function when it first saves that function's machine code, so a
+missing index file means that function will be compiled. It does not tell the signatures
+within one index apart: a run that pairs a cached system with a cached method for the
+first time compiles (about a minute) without notice; after :func:`compile_all` none does.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+COLD_MINUTES = 3  # measured: the demo's first sweep on a busy 2-core machine (issue 20)
+NOTICE = ("softimpact: compiling numerical kernels (first run only, about {minutes} min on "
+          "2 cores); cached in {folder}")
+
+_announced = False
+
+
+def _index_path(dispatcher) -> Path | None:
+    """The numba index file of a cached jitted function (None when it has no disk cache,
+    e.g. under NUMBA_DISABLE_JIT=1)."""
+    cache_file = getattr(getattr(dispatcher, "_cache", None), "_cache_file", None)
+    path = getattr(cache_file, "_index_path", None)
+    return Path(path) if path else None
+
+
+def _scene_kernels(model: str, bodies: int, method: str, catalogue: bool) -> list:
+    """The jitted functions a run of (model, bodies) with ``method`` calls first: the
+    trajectory kernels, the method, the system, and the catalogue's variational equations."""
+    from .kernels import METHODS, orbit
+    from .systems import get_system, variational
+
+    system = get_system(model, bodies)
+    kernels = [orbit.classify_near, orbit.record, METHODS[method].advance, system.rhs]
+    if catalogue:
+        body = get_system(model, 1)
+        kernels += [orbit.flow, body.rhs, variational.variational_rhs(body)]
+    return kernels
+
+
+def missing_kernels(model: str = "duffing", bodies: int = 2, method: str = "auto",
+                    catalogue: bool = True) -> list[str]:
+    """Names of the kernels a run needs whose compiled code is not in the disk cache
+    (``catalogue``: the run finds attractors first, as every kind but trajectory does)."""
+    missing = []
+    for dispatcher in _scene_kernels(model, bodies, method, catalogue):
+        path = _index_path(dispatcher)
+        if path is not None and not path.is_file():
+            missing.append(f"{dispatcher.py_func.__module__}.{dispatcher.__name__}")
+    return missing
+
+
+def cache_folder() -> Path | None:
+    """The folder of this source version's compiled kernels (None without a disk cache)."""
+    from .kernels import orbit
+
+    path = _index_path(orbit.classify_near)
+    return path.parent.parent if path is not None else None
+
+
+def compile_notice(scene=None) -> str | None:
+    """The notice for a run of ``scene`` (a loaded scene, or None for the default pair),
+    or None when every kernel it needs is cached."""
+    if scene is None:
+        model, bodies, method, catalogue = "duffing", 2, "auto", True
+    else:
+        model, bodies = scene.system.model, scene.system.bodies
+        method = scene.integrator.resolved_method
+        catalogue = scene.analysis.kind != "trajectory"
+    if not missing_kernels(model, bodies, method, catalogue):
+        return None
+    return NOTICE.format(minutes=COLD_MINUTES, folder=cache_folder())
+
+
+def announce_compilation(scene=None, stream=None) -> None:
+    """Print the compile notice on stderr once per process when this run will compile."""
+    global _announced
+    if _announced:
+        return
+    message = compile_notice(scene)
+    if message:
+        _announced = True
+        print(message, file=stream or sys.stderr, flush=True)
+
+
+@dataclass(frozen=True)
+class Step:
+    """One warm-up step: what it compiles and the seconds it took."""
+
+    what: str
+    seconds: float
+
+
+def _steps(model: str | None = None) -> list:
+    """(description, callable) pairs covering every kernel signature the CLI uses, for
+    one model (None: all)."""
+    import numpy as np
+
+    from .analysis.catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
+    from .config import IntegratorSettings
+    from .engine import Problem, RecurrenceCells, classify_state, flow, record_trajectory
+    from .kernels import METHODS
+    from .step_stability import rk4_step_warning
+    from .systems import REGISTRY
+
+    def run_system(system, method):
+        problem = Problem(system, system.defaults(),
+                          IntegratorSettings(method=method, max_periods=2, cell_size=0.5))
+        state = np.zeros(system.dim)
+        state[0] = 0.5
+        cells = RecurrenceCells(problem.integrator.cell_size, 1, problem.integrator.max_periods)
+        cells.remember(classify_state(problem, state, recurrence=cells), 1)  # cells path
+        record_trajectory(problem, state, 0.0, 1, 4)
+        flow(problem, state, 0.0, 0.25 * problem.period)
+
+    def run_catalogue(system):  # the catalogue's steps after the search, at any x0
+        problem = Problem(system, system.defaults(), SHOOTING)
+        x0 = np.array([0.5, 0.0])
+        refine_orbit(problem, x0, 1, max_iter=1)  # variational equations
+        orbit_points(problem, x0, 2)
+        amplitude(problem, x0, 1, samples=8)
+
+    steps = []
+    for (name, bodies), system in sorted(REGISTRY.items()):
+        if model is not None and name != model:
+            continue
+        kind = "pair" if bodies == 2 else "body"
+        steps.append((f"{name} {kind}: rk4 step check",
+                      lambda s=system: rk4_step_warning(Problem(s, s.defaults()))))
+        for method in METHODS:
+            steps.append((f"{name} {kind}: {method}", lambda s=system, m=method: run_system(s, m)))
+        if bodies == 1:
+            steps.append((f"{name} catalogue (Newton, variational equations)",
+                          lambda s=system: run_catalogue(s)))
+    return steps
+
+
+def _run_steps(model: str | None, verbose: bool) -> list[Step]:
+    done = []
+    for what, run in _steps(model):
+        start = time.perf_counter()
+        run()
+        done.append(Step(what, time.perf_counter() - start))
+        if verbose:
+            print(f"  {what}: {done[-1].seconds:.1f} s", file=sys.stderr, flush=True)
+    return done
+
+
+def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]:
+    """Run every warm-up step (each compiles what is not cached yet); their wall times.
+
+    With ``workers`` > 1 (default: the cores) each model compiles in its own process;
+    then this process runs every step again, loading what they cached and compiling what
+    they did not save (two processes updating one index file at the same moment can lose
+    an entry). The second pass takes seconds.
+    """
+    from .systems import MODELS
+
+    workers = min(workers or os.cpu_count() or 1, len(MODELS))
+    done = []
+    if workers > 1:
+        context = multiprocessing.get_context("spawn")
+        with ProcessPoolExecutor(workers, mp_context=context) as pool:
+            for steps in pool.map(_run_steps, MODELS, [verbose] * len(MODELS)):
+                done += steps
+        if verbose:
+            print("  loading every kernel once more:", file=sys.stderr, flush=True)
+    return done + _run_steps(None, verbose)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m softimpact_cli.warmup``: compile every kernel into the disk cache."""
+    quiet = "-q" in (argv if argv is not None else sys.argv[1:])
+    folder = cache_folder()
+    if not quiet:
+        print(f"softimpact: compiling numerical kernels into {folder} ({os.cpu_count()} "
+              "cores; a few minutes, once per installed version)", file=sys.stderr, flush=True)
+    start = time.perf_counter()
+    compile_all(verbose=not quiet)
+    print(f"softimpact: kernels compiled and cached in {time.perf_counter() - start:.0f} s "
+          f"({folder})", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    # run the imported module's main, so that the worker processes find its functions
+    from softimpact_cli.warmup import main as _main
+
+    sys.exit(_main())

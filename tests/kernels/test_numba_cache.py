@@ -1,0 +1,105 @@
+"""numba's disk cache must work across processes for kernels taking jitted functions."""
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+SCRIPT = """
+import sys
+from softimpact_cli.engine import Problem, classify_state
+from softimpact_cli.kernels import orbit
+from softimpact_cli.systems import get_system
+which = sys.argv[1]
+if which == "pair":
+    pr = Problem(get_system("duffing", 2), dict(c=0.05, k1=1, k2=0.01, F=1, w=1.3, d=6.0,
+                                               phi=0.0, k_c=8, c_c=10, law="paper"))
+    classify_state(pr, [1.0, 0.0, -1.0, 0.0])
+else:
+    pr = Problem(get_system("duffing", 1), dict(c=0.05, k1=1, k2=0.01, F=1, w=1.3))
+    classify_state(pr, [1.0, 0.0])
+stats = orbit.classify_near.stats  # what classify_state calls
+print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()))
+"""
+
+
+def run(which, cache_dir):
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache_dir)}
+    proc = subprocess.run([sys.executable, "-c", SCRIPT, which], capture_output=True,
+                          text=True, env=env)
+    assert proc.returncode == 0, proc.stderr
+    hits, misses = map(int, proc.stdout.split())
+    return hits, misses
+
+
+def test_second_process_adds_and_third_reuses(tmp_path):
+    assert run("pair", tmp_path) == (0, 1)  # compiled and saved
+    assert run("body", tmp_path) == (0, 1)  # another specialization added to the index
+    assert run("pair", tmp_path) == (1, 0)  # both load from disk in a fresh process
+    assert run("body", tmp_path) == (1, 0)
+
+
+def test_cache_folder_changes_when_any_kernel_source_changes(tmp_path):
+    """numba only watches a function's own file; the folder key covers all of them."""
+    import shutil
+
+    from softimpact_cli._numba_cache_dir import PACKAGE, SOURCES, source_hash
+
+    for folder in SOURCES:
+        shutil.copytree(PACKAGE / folder, tmp_path / folder,
+                        ignore=shutil.ignore_patterns("__pycache__"))
+    before = source_hash(tmp_path)
+    assert before == source_hash(PACKAGE)
+    target = tmp_path / "kernels" / "switching.py"
+    target.write_text(target.read_text() + "\n# edited\n")
+    assert source_hash(tmp_path) != before
+
+
+CATALOGUE = """
+import json
+from numba.core import event
+from softimpact_cli import warmup
+from softimpact_cli.analysis.catalogue import body_catalogue, sample_states
+from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.engine import Problem
+from softimpact_cli.systems import get_system
+missing = warmup.missing_kernels("duffing", 1, "dopri5")
+body = get_system("duffing", 1)
+problem = Problem(body, body.defaults(), IntegratorSettings(method="dopri5"))
+states = sample_states({"x": (-12.0, 12.0), "v": (-12.0, 12.0)}, 2, 0, 0)
+with event.install_recorder("numba:compile") as rec:
+    attractors, _ = body_catalogue(problem, states)
+compiled = sorted({e.data["dispatcher"].py_func.__qualname__ for _, e in rec.buffer})
+print(json.dumps({"missing": missing, "compiled": compiled,
+                  "multipliers": [repr(complex(m)) for a in attractors for m in a.multipliers]}))
+"""
+
+
+def cache_files(folder):
+    return {str(p.relative_to(folder)): p.stat().st_size for p in folder.rglob("*")
+            if p.is_file()}
+
+
+@pytest.mark.slow
+def test_catalogue_in_ten_processes_stops_growing_the_cache(tmp_path):
+    """Issue 20, items 8 and 16: the catalogue's Newton refinement (variational equations)
+    compiled in every process and added one `orbit.flow` entry to the disk cache per run,
+    until numba failed with "underlying object has vanished". From the second process on,
+    nothing compiles and the cache folder stays byte for byte the same size."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    runs, sizes = [], []
+    for _ in range(10):
+        proc = subprocess.run([sys.executable, "-c", CATALOGUE], capture_output=True,
+                              text=True, env=env)
+        assert proc.returncode == 0, proc.stderr
+        runs.append(json.loads(proc.stdout))
+        sizes.append(cache_files(tmp_path))
+    first, warm = runs[0], runs[1:]
+    assert first["compiled"] and first["missing"]  # a cold cache: compiled, and announced
+    assert first["multipliers"]  # the catalogue refined at least one orbit
+    for run in warm:
+        assert run["compiled"] == [] and run["missing"] == []
+        assert run["multipliers"] == first["multipliers"]
+    assert all(s == sizes[0] for s in sizes[1:])

@@ -1,0 +1,83 @@
+"""The first-run compile notice and the ahead-of-time warm-up (issue 20, item 5)."""
+
+import io
+import os
+import signal
+import subprocess
+import sys
+
+from softimpact_cli import warmup
+from softimpact_cli.kernels import METHODS
+from softimpact_cli.systems import REGISTRY
+
+SCENE = """
+[system]
+model = "duffing"
+[analysis]
+kind = "basins"
+[initial_conditions]
+kind = "plane"
+axes = ["x1", "x2"]
+ranges = [[-1.0, 1.0], [-1.0, 1.0]]
+resolution = [2, 2]
+[output]
+path = "{out}"
+"""
+
+
+def test_cold_cache_sweep_says_it_compiles_and_where(tmp_path):
+    """A sweep on an empty kernel cache prints the notice, naming the cache folder, before
+    it starts compiling (the run is killed once the line is read)."""
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENE.format(out=tmp_path / "r.h5"))
+    cache = tmp_path / "cache"
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache)}
+    proc = subprocess.Popen([sys.executable, "-m", "softimpact_cli", "sweep", str(scene), "-q",
+                             "--workers", "1"], stderr=subprocess.PIPE, text=True, env=env)
+    try:
+        line = proc.stderr.readline()
+    finally:
+        proc.send_signal(signal.SIGKILL)
+        proc.wait()
+    assert line.startswith("softimpact: compiling numerical kernels (first run only"), line
+    assert f"cached in {cache}{os.sep}" in line
+
+
+def test_notice_is_printed_once_per_process(monkeypatch):
+    monkeypatch.setattr(warmup, "_announced", False)
+    monkeypatch.setattr(warmup, "compile_notice", lambda scene=None: "compiling")
+    stream = io.StringIO()
+    for _ in range(3):
+        warmup.announce_compilation(stream=stream)
+    assert stream.getvalue() == "compiling\n"
+
+
+def test_no_notice_without_missing_kernels(monkeypatch):
+    monkeypatch.setattr(warmup, "missing_kernels", lambda *args: [])
+    assert warmup.compile_notice() is None
+    monkeypatch.setattr(warmup, "missing_kernels", lambda *args: ["orbit.flow"])
+    assert "cached in" in warmup.compile_notice()
+
+
+def test_warm_up_covers_every_system_and_method():
+    """Each registered system with each method, and each body's catalogue (variational
+    equations): a new system or method must get its warm-up step."""
+    names = [what for what, _ in warmup._steps()]
+    for (model, bodies), _ in REGISTRY.items():
+        kind = "pair" if bodies == 2 else "body"
+        for method in METHODS:
+            assert f"{model} {kind}: {method}" in names
+        if bodies == 1:
+            assert f"{model} catalogue (Newton, variational equations)" in names
+
+
+def test_missing_kernels_are_named_by_module(tmp_path):
+    """On an empty cache every kernel a run needs is missing, the method's included."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    code = ("from softimpact_cli import warmup; "
+            "print(' '.join(warmup.missing_kernels('bilinear', 2, 'rodas4')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         env=env, check=True).stdout.split()
+    assert "softimpact_cli.kernels.rosenbrock.advance" in out
+    assert "softimpact_cli.systems.bilinear.pair_rhs" in out
+    assert "softimpact_cli.systems.variational.bilinear_body_rhs" in out
