@@ -79,11 +79,9 @@ def _check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
 
 def _check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
     from .analysis import critical_distance as cd
-    from .analysis.catalogue import build_catalogue, sample_states
+    from .run import scene_catalogue
 
-    c = scene.catalogue
-    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
-                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    cat = scene_catalogue(scene)
     rng = np.random.default_rng(seed)
     phis = np.sort(rng.choice(np.array(scene.analysis.phis), size=min(sample, 16),
                               replace=False))

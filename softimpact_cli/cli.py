@@ -248,6 +248,31 @@ def check(scene, sample, seed, as_json):
     click.echo(json.dumps(report, indent=2) if as_json else _format_check(report))
 
 
+@main.command()
+@click.argument("result_a", type=click.Path(dir_okay=False))
+@click.argument("result_b", type=click.Path(dir_okay=False))
+@click.option("--max-label-change", type=click.FloatRange(0, 1), default=None, metavar="F",
+              help="Exit 1 when more than this share of the labels differ (sweeps).")
+@click.option("--max-share-change", type=click.FloatRange(0, 1), default=None, metavar="F",
+              help="Exit 1 when a solution's share at a grid point moves by more (sweeps).")
+@click.option("--max-d-change", type=click.FloatRange(min=0), default=None, metavar="F",
+              help="Exit 1 when a d_crit or destruction point moves by more (dcrit, "
+                   "bifurcation).")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@_user_errors
+def compare(result_a, result_b, max_label_change, max_share_change, max_d_change, as_json):
+    """Differences of RESULT_B from RESULT_A (same scene layout): labels, shares, d."""
+    from .compare import compare_results, format_comparison, limits_exceeded
+
+    report = compare_results(_open(result_a), _open(result_b), result_a, result_b)
+    why = limits_exceeded(report, max_label_change, max_share_change, max_d_change)
+    click.echo(json.dumps({**report, "failed": why}, indent=2) if as_json
+               else format_comparison(report))
+    if why:
+        click.echo(f"softimpact: compare: {'; '.join(why)}", err=True)
+        sys.exit(1)
+
+
 @main.group()
 def plot():
     """Draw figures from result files."""

@@ -53,22 +53,28 @@ def run_scene(scene: Scene, progress=None) -> xr.Dataset:
     return ds
 
 
+def scene_catalogue(scene: Scene):
+    """The [catalogue] search of a dcrit or bifurcation scene; one line (ConfigError) and
+    nothing further computed when it finds no attractor."""
+    from .analysis.catalogue import build_catalogue, require_attractors, sample_states
+
+    c = scene.catalogue
+    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    require_attractors(cat, scene.analysis.kind, str(scene.source))
+    return cat
+
+
 def critical_distance_dataset(scene: Scene, progress=None) -> xr.Dataset:
     """d_crit(phi) of every combination, the traces of fig. 5 (b-d), and the catalogue."""
     import numpy as np
 
-    from .analysis.catalogue import (
-        build_catalogue,
-        catalogue_dataset,
-        sample_states,
-    )
+    from .analysis.catalogue import catalogue_dataset
     from .analysis.critical_distance import critical_distances, traces
 
     a = scene.analysis
-    c = scene.catalogue
     values = dict(scene.values)
-    cat = build_catalogue(scene.system, values, scene.integrator,
-                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    cat = scene_catalogue(scene)
     tick = progress(len(a.phis)) if progress else None
     ds = critical_distances(scene.system, values, list(cat.attractors), np.array(a.phis),
                             a.samples, tick)
@@ -86,14 +92,12 @@ def critical_distance_dataset(scene: Scene, progress=None) -> xr.Dataset:
 def bifurcation_result(scene: Scene, progress=None) -> xr.Dataset:
     """Follow the scene's branches along d (figure 7), with the catalogue attached."""
     from .analysis.bifurcation import bifurcation_dataset, d_values
-    from .analysis.catalogue import build_catalogue, catalogue_dataset, sample_states
+    from .analysis.catalogue import catalogue_dataset
     from .config import ConfigError
 
     a = scene.analysis
-    c = scene.catalogue
     values = dict(scene.values)
-    cat = build_catalogue(scene.system, values, scene.integrator,
-                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    cat = scene_catalogue(scene)
     branches = list(a.branches) or list(cat.names)
     for b in branches:
         if b not in cat.names:

@@ -15,6 +15,7 @@ from ..analysis.catalogue import (
     body_problem,
     catalogue_dataset,
     combinations,
+    require_attractors,
     right_attractors,
     sample_states,
 )
@@ -138,6 +139,8 @@ def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: st
     started = time.time()
     t_start = time.perf_counter()
     catalogues, names = prepare_catalogues(scene)
+    if scene.analysis.kind == "map":  # counts need d_crit: stop before any chunk or file
+        require_attractors(next(iter(catalogues.values())), "map", str(scene.source))
     echo(f"catalogue: {len(names)} solutions: {', '.join(names)}")
     ic = scene.initial_conditions
     t0_per_sample = None
