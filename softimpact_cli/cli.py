@@ -110,9 +110,11 @@ def _scheduler(ctx, param, value):
 @click.option("--check", "check_n", type=click.IntRange(min=1), default=None, metavar="N",
               help="Afterwards rerun N random trajectories at tightened settings and store "
                    "the label change share and wall-time ratio in the result.")
+@click.option("--dry-run", is_flag=True,
+              help="Validate SCENE and print what would be computed; write nothing.")
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
-          resolution, strict, check_n):
+          resolution, strict, check_n, dry_run):
     """Run SCENE (a TOML file) and write its result to HDF5."""
     from .config import SWEEP_KINDS
     from .config import quick as quick_scene
@@ -127,6 +129,13 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     out = Path(output) if output else sc.output
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)
+    if dry_run:
+        from dataclasses import replace
+
+        from .run import plan_text
+
+        click.echo(plan_text(replace(sc, output=out), workers, chunk_size))
+        return
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     _check_rk4_step(sc, strict)
     if sc.analysis.kind in SWEEP_KINDS:
@@ -455,26 +464,9 @@ def info(result, as_json, compare):
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
-    scene = summary.pop("scene", "")
-    if ds.attrs.get("analysis") == "design":
-        from .info import format_design
+    from .info_text import format_summary
 
-        click.echo(format_design(ds))
-        summary = {k: v for k, v in summary.items()
-                   if k not in ("target", "best", "runners_up", "reference", "robustness")}
-    points = summary.pop("points", None)
-    for key, value in summary.items():
-        click.echo(f"{key:28s} {value}")
-    for point in (points or [])[:50]:
-        where = ", ".join(f"{a}={point[a]:.6g}" if isinstance(point[a], float) else
-                          f"{a}={point[a]}" for a in ("d", "phi", "k_c", "c_c", "t0"))
-        shares = ", ".join(f"{n} {f:.3f}" for n, f in sorted(point["fractions"].items()))
-        click.echo(f"  {where}: {shares}")
-    if points and len(points) > 50:
-        click.echo(f"  ... {len(points) - 50} more points (--json lists all)")
-    click.echo("scene:")
-    for line in scene.splitlines():
-        click.echo(f"  {line}")
+    click.echo(format_summary(summary, ds))
 
 
 if __name__ == "__main__":

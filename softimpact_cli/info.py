@@ -108,7 +108,8 @@ def format_catalogue(ds) -> str:
         lines.append(f"{a['name']:10s} {a['period']:6d} {a['amplitude']:10.4f} {mods:>20s} "
                      f"{a['share']:7.3f} {a['residual']:9.1e}")
     counts = summary["counts"]
-    lines.append("samples: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+    if counts:  # a sweep's stored catalogue keeps no sample counts
+        lines.append("samples: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
     if "combinations" in summary:
         names = summary["combinations"]
         lines.append(f"combinations ({len(names)}): " + ", ".join(names))
