@@ -123,3 +123,17 @@ def report_attributes(report: dict) -> dict:
         out[f"check_{k}"] = (", ".join(f"{a}: {b}" for a, b in v.items()) or "none"
                              if isinstance(v, dict) else v)
     return out
+
+
+def over_limit(report: dict, fail_over: float | None) -> str | None:
+    """Why the report fails ``--fail-over`` (None: it passes): the label change share of a
+    sweep, or the largest change of d_crit / a destruction point, above ``fail_over``."""
+    if fail_over is None:
+        return None
+    if report["kind"] == "labels":
+        value, what = report["changed_share"], "label change share"
+    else:
+        value, what = report["max_change"], f"largest {report['kind']} change"
+    if report.get("appeared_or_vanished"):
+        return f"{report['appeared_or_vanished']} destruction points appeared or vanished"
+    return f"{what} {value:.4g} > --fail-over {fail_over:g}" if value > fail_over else None

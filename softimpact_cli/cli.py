@@ -244,10 +244,13 @@ def _format_check(report: dict) -> str:
               help="Trajectories (sweeps) or phases (dcrit) rerun.")
 @click.option("--seed", type=int, default=0, show_default=True)
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@click.option("--fail-over", type=click.FloatRange(min=0), default=None, metavar="F",
+              help="Exit 1 when the label change share (sweeps) or the largest d change "
+                   "(dcrit, bifurcation) exceeds F.")
 @_user_errors
-def check(scene, sample, seed, as_json):
+def check(scene, sample, seed, as_json, fail_over):
     """Rerun part of SCENE at tightened settings: label changes and wall-time ratio."""
-    from .check import check_scene
+    from .check import check_scene, over_limit
 
     sc = load_scene(scene)
     try:
@@ -255,6 +258,10 @@ def check(scene, sample, seed, as_json):
     except ValueError as exc:
         raise ConfigError(f"{scene}: {exc}") from None
     click.echo(json.dumps(report, indent=2) if as_json else _format_check(report))
+    why = over_limit(report, fail_over)
+    if why:
+        click.echo(f"softimpact: check: {why}", err=True)
+        sys.exit(1)
 
 
 @main.command()
