@@ -198,8 +198,10 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
               help="Dask scheduler: tcp://HOST:PORT, or local:N to start a LocalCluster.")
 @click.option("-q", "--quiet", is_flag=True, help="No stages, no progress bar.")
 @click.option("--quick", is_flag=True, help="At most 100 samples (previews and CI).")
+@click.option("--dry-run", is_flag=True,
+              help="Validate SCENE and print what would be computed; write nothing.")
 @_user_errors
-def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
+def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, dry_run):
     """Choose (d, phi, k_c, c_c) so that only the target solution survives (design SCENE)."""
     from .config import quick as quick_scene
     from .config.design import with_target
@@ -213,6 +215,13 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
     out = Path(output) if output else sc.output
     check_writable(out, scene if not output else "command line",
                    "-o/--output" if output else "[output] path")
+    if dry_run:
+        from dataclasses import replace
+
+        from .run import plan_text
+
+        click.echo(plan_text(replace(sc, output=out)))
+        return
     _run_design(sc, out, overwrite, workers, scheduler, quiet)
 
 

@@ -211,3 +211,13 @@ def test_empty_catalogue_basins_still_run(tmp_path):
     assert proc.exit_code == 0, proc.output
     summary = json.loads(run("info", out, "--json").output)
     assert summary["status"]["diverged"] == 16
+
+
+def test_design_dry_run_with_target(tmp_path):
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENES["design"])
+    proc = run("design", scene, "--target", "L1^2 R1-0^2", "-o", tmp_path / "r.h5",
+               "--dry-run")
+    assert proc.exit_code == 0, proc.output
+    assert proc.output.startswith("design: target L1^2 R1-0^2; 4 candidates")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.toml"]
