@@ -126,7 +126,9 @@ def _dcrit_table(dcrit: dict) -> list[str]:
             out.append(f"{name:{width}s}  " + "  ".join(
                 f"{'-' if v is None else f'{v:.4f}':>10s}" for v in r["d_crit"]))
         return out
-    out = [f"{'d_crit over ' + str(len(phis)) + ' phases':{width}s}  "
+    head = f"d_crit over {len(phis)} phases"
+    width = max(width, len(head))
+    out = [f"{head:{width}s}  "
            f"{'min':>9s} {'at phi':>8s}  {'max':>9s} {'at phi':>8s}"]
     for name, r in dcrit.items():
         v = np.array([np.nan if x is None else x for x in r["d_crit"]], dtype=float)
