@@ -79,11 +79,9 @@ def _check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
 
 def _check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
     from .analysis import critical_distance as cd
-    from .analysis.catalogue import build_catalogue, sample_states
+    from .run import scene_catalogue
 
-    c = scene.catalogue
-    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
-                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    cat = scene_catalogue(scene)
     rng = np.random.default_rng(seed)
     phis = np.sort(rng.choice(np.array(scene.analysis.phis), size=min(sample, 16),
                               replace=False))
@@ -125,3 +123,17 @@ def report_attributes(report: dict) -> dict:
         out[f"check_{k}"] = (", ".join(f"{a}: {b}" for a, b in v.items()) or "none"
                              if isinstance(v, dict) else v)
     return out
+
+
+def over_limit(report: dict, fail_over: float | None) -> str | None:
+    """Why the report fails ``--fail-over`` (None: it passes): the label change share of a
+    sweep, or the largest change of d_crit / a destruction point, above ``fail_over``."""
+    if fail_over is None:
+        return None
+    if report["kind"] == "labels":
+        value, what = report["changed_share"], "label change share"
+    else:
+        value, what = report["max_change"], f"largest {report['kind']} change"
+    if report.get("appeared_or_vanished"):
+        return f"{report['appeared_or_vanished']} destruction points appeared or vanished"
+    return f"{what} {value:.4g} > --fail-over {fail_over:g}" if value > fail_over else None

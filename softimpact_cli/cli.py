@@ -160,10 +160,12 @@ def _scheduler(ctx, param, value):
 @click.option("--check", "check_n", type=click.IntRange(min=1), default=None, metavar="N",
               help="Afterwards rerun N random trajectories at tightened settings and store "
                    "the label change share and wall-time ratio in the result.")
+@click.option("--dry-run", is_flag=True,
+              help="Validate SCENE and print what would be computed; write nothing.")
 @_interruptible
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
-          resolution, strict, check_n):
+          resolution, strict, check_n, dry_run):
     """Run SCENE (a TOML file) and write its result to HDF5.
 
     SCENE's [analysis] kind says what is computed:
@@ -201,6 +203,13 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     out = result_path(sc, output)
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)
+    if dry_run:
+        from dataclasses import replace
+
+        from .run import plan_text
+
+        click.echo(plan_text(replace(sc, output=out), workers, chunk_size))
+        return
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     _check_rk4_step(sc, strict)
     from .warmup import announce_compilation
@@ -274,9 +283,11 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
               help="Dask scheduler: tcp://HOST:PORT, or local:N to start a LocalCluster.")
 @click.option("-q", "--quiet", is_flag=True, help="No stages, no progress bar.")
 @click.option("--quick", is_flag=True, help="At most 100 samples (previews and CI).")
+@click.option("--dry-run", is_flag=True,
+              help="Validate SCENE and print what would be computed; write nothing.")
 @_interruptible
 @_user_errors
-def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
+def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, dry_run):
     """Choose (d, phi, k_c, c_c) so that only the target solution survives (design SCENE).
 
     SCENE must have [analysis] kind = "design" (the other kinds, listed in
@@ -299,6 +310,13 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick):
     out = result_path(sc, output)
     check_writable(out, scene if not output else "command line",
                    "-o/--output" if output else "[output] path")
+    if dry_run:
+        from dataclasses import replace
+
+        from .run import plan_text
+
+        click.echo(plan_text(replace(sc, output=out)))
+        return
     from .warmup import announce_compilation
     announce_compilation(sc)
     _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, False)
@@ -332,11 +350,14 @@ def _format_check(report: dict) -> str:
               help="Trajectories (sweeps) or phases (dcrit) rerun.")
 @click.option("--seed", type=int, default=0, show_default=True)
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@click.option("--fail-over", type=click.FloatRange(min=0), default=None, metavar="F",
+              help="Exit 1 when the label change share (sweeps) or the largest d change "
+                   "(dcrit, bifurcation) exceeds F.")
 @_interruptible
 @_user_errors
-def check(scene, sample, seed, as_json):
+def check(scene, sample, seed, as_json, fail_over):
     """Rerun part of SCENE at tightened settings: label changes and wall-time ratio."""
-    from .check import check_scene
+    from .check import check_scene, over_limit
 
     sc = load_scene(scene)
     from .warmup import announce_compilation
@@ -346,6 +367,35 @@ def check(scene, sample, seed, as_json):
     except ValueError as exc:
         raise ConfigError(f"{scene}: {exc}") from None
     click.echo(json.dumps(report, indent=2) if as_json else _format_check(report))
+    why = over_limit(report, fail_over)
+    if why:
+        click.echo(f"softimpact: check: {why}", err=True)
+        sys.exit(1)
+
+
+@main.command()
+@click.argument("result_a", type=click.Path(dir_okay=False))
+@click.argument("result_b", type=click.Path(dir_okay=False))
+@click.option("--max-label-change", type=click.FloatRange(0, 1), default=None, metavar="F",
+              help="Exit 1 when more than this share of the labels differ (sweeps).")
+@click.option("--max-share-change", type=click.FloatRange(0, 1), default=None, metavar="F",
+              help="Exit 1 when a solution's share at a grid point moves by more (sweeps).")
+@click.option("--max-d-change", type=click.FloatRange(min=0), default=None, metavar="F",
+              help="Exit 1 when a d_crit or destruction point moves by more (dcrit, "
+                   "bifurcation).")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@_user_errors
+def compare(result_a, result_b, max_label_change, max_share_change, max_d_change, as_json):
+    """Differences of RESULT_B from RESULT_A (same scene layout): labels, shares, d."""
+    from .compare import compare_results, format_comparison, limits_exceeded
+
+    report = compare_results(_open(result_a), _open(result_b), result_a, result_b)
+    why = limits_exceeded(report, max_label_change, max_share_change, max_d_change)
+    click.echo(json.dumps({**report, "failed": why}, indent=2) if as_json
+               else format_comparison(report))
+    if why:
+        click.echo(f"softimpact: compare: {'; '.join(why)}", err=True)
+        sys.exit(1)
 
 
 @main.command()
@@ -564,26 +614,9 @@ def info(result, as_json, compare):
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
-    scene = summary.pop("scene", "")
-    if ds.attrs.get("analysis") == "design":
-        from .info import format_design
+    from .info_text import format_summary
 
-        click.echo(format_design(ds))
-        summary = {k: v for k, v in summary.items()
-                   if k not in ("target", "best", "runners_up", "reference", "robustness")}
-    points = summary.pop("points", None)
-    for key, value in summary.items():
-        click.echo(f"{key:28s} {value}")
-    for point in (points or [])[:50]:
-        where = ", ".join(f"{a}={point[a]:.6g}" if isinstance(point[a], float) else
-                          f"{a}={point[a]}" for a in ("d", "phi", "k_c", "c_c", "t0"))
-        shares = ", ".join(f"{n} {f:.3f}" for n, f in sorted(point["fractions"].items()))
-        click.echo(f"  {where}: {shares}")
-    if points and len(points) > 50:
-        click.echo(f"  ... {len(points) - 50} more points (--json lists all)")
-    click.echo("scene:")
-    for line in scene.splitlines():
-        click.echo(f"  {line}")
+    click.echo(format_summary(summary, ds))
 
 
 if __name__ == "__main__":

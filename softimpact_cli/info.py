@@ -48,16 +48,30 @@ def describe(ds) -> dict:
                                             for v in ds["impacting_range"].values[i]]}
             for i, name in enumerate(ds["branch_name"].values)}
     if "d_crit" in ds:
-        out["d_crit"] = {
-            str(name): {"phi": ds["phi"].values.tolist(),
-                        "d_crit": ds["d_crit"].values[i].tolist()}
-            for i, name in enumerate(ds["combination_label"].values)}
+        out["d_crit"] = dcrit_summary(ds)
     if ds.attrs.get("analysis") in ("basins", "stability", "map"):
         out.update(sweep_summary(ds))
     if ds.attrs.get("analysis") == "design":
         out.update(design_summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}
+
+
+def dcrit_summary(ds) -> dict:
+    """{combination: {"phi": [...], "d_crit": [...]}} of a dcrit result, or of the d_crit
+    curves a map stores (dims dcrit_combination, dcrit_phi: named after the catalogue's
+    combinations, in the order the critical distances were computed)."""
+    if "combination_label" in ds:
+        names, phi = [str(n) for n in ds["combination_label"].values], ds["phi"].values
+        values = ds["d_crit"].transpose("combination", "phi").values
+    else:
+        values = ds["d_crit"].transpose("dcrit_combination", "dcrit_phi").values
+        phi = ds["dcrit_phi"].values
+        names = [str(n) for n in ds["combination_name"].values] \
+            if "combination_name" in ds and ds.sizes["combination"] == len(values) \
+            else [f"combination {i}" for i in range(len(values))]
+    return {name: {"phi": [float(p) for p in phi], "d_crit": [_plain(float(v)) for v in row]}
+            for name, row in zip(names, values, strict=True)}
 
 
 def catalogue_summary(ds) -> dict:
@@ -94,7 +108,8 @@ def format_catalogue(ds) -> str:
         lines.append(f"{a['name']:10s} {a['period']:6d} {a['amplitude']:10.4f} {mods:>20s} "
                      f"{a['share']:7.3f} {a['residual']:9.1e}")
     counts = summary["counts"]
-    lines.append("samples: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+    if counts:  # a sweep's stored catalogue keeps no sample counts
+        lines.append("samples: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
     if "combinations" in summary:
         names = summary["combinations"]
         lines.append(f"combinations ({len(names)}): " + ", ".join(names))

@@ -53,22 +53,28 @@ def run_scene(scene: Scene, progress=None) -> xr.Dataset:
     return ds
 
 
+def scene_catalogue(scene: Scene):
+    """The [catalogue] search of a dcrit or bifurcation scene; one line (ConfigError) and
+    nothing further computed when it finds no attractor."""
+    from .analysis.catalogue import build_catalogue, require_attractors, sample_states
+
+    c = scene.catalogue
+    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    require_attractors(cat, scene.analysis.kind, str(scene.source))
+    return cat
+
+
 def critical_distance_dataset(scene: Scene, progress=None) -> xr.Dataset:
     """d_crit(phi) of every combination, the traces of fig. 5 (b-d), and the catalogue."""
     import numpy as np
 
-    from .analysis.catalogue import (
-        build_catalogue,
-        catalogue_dataset,
-        sample_states,
-    )
+    from .analysis.catalogue import catalogue_dataset
     from .analysis.critical_distance import critical_distances, traces
 
     a = scene.analysis
-    c = scene.catalogue
     values = dict(scene.values)
-    cat = build_catalogue(scene.system, values, scene.integrator,
-                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    cat = scene_catalogue(scene)
     tick = progress(len(a.phis)) if progress else None
     ds = critical_distances(scene.system, values, list(cat.attractors), np.array(a.phis),
                             a.samples, tick)
@@ -86,14 +92,12 @@ def critical_distance_dataset(scene: Scene, progress=None) -> xr.Dataset:
 def bifurcation_result(scene: Scene, progress=None) -> xr.Dataset:
     """Follow the scene's branches along d (figure 7), with the catalogue attached."""
     from .analysis.bifurcation import bifurcation_dataset, d_values
-    from .analysis.catalogue import build_catalogue, catalogue_dataset, sample_states
+    from .analysis.catalogue import catalogue_dataset
     from .config import ConfigError
 
     a = scene.analysis
-    c = scene.catalogue
     values = dict(scene.values)
-    cat = build_catalogue(scene.system, values, scene.integrator,
-                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    cat = scene_catalogue(scene)
     branches = list(a.branches) or list(cat.names)
     for b in branches:
         if b not in cat.names:
@@ -107,3 +111,50 @@ def bifurcation_result(scene: Scene, progress=None) -> xr.Dataset:
     ds.attrs["analysis"] = "bifurcation"
     ds.attrs["forcing_period"] = 2 * 3.141592653589793 / float(values["w"])
     return ds
+
+
+def plan_text(scene: Scene, workers: int | None = None, chunk_size: int | None = None) -> str:
+    """What running ``scene`` will compute, as text (``sweep --dry-run``); runs nothing."""
+    import os
+
+    from .config import SWEEP_KINDS
+
+    a = scene.analysis
+    lines = []
+    if a.kind in SWEEP_KINDS:
+        from .sweep.plan import Plan, default_chunk_size
+
+        n_total = scene.grid.size * scene.initial_conditions.count
+        size = chunk_size or default_chunk_size(n_total, workers or os.cpu_count() or 1)
+        lines.append(f"{a.kind}: " + Plan(scene, size).describe())
+    elif a.kind == "trajectory":
+        state = ", ".join(f"{x:g}" for x in a.state)
+        lines.append(f"trajectory: {a.periods} periods from ({state}) at t0 = {a.t0:g}, "
+                     f"{a.samples_per_period} samples per period")
+    elif a.kind == "catalogue":
+        lines.append(f"catalogue: {a.grid} x {a.grid} grid + {a.random} random initial "
+                     f"conditions of one body at t0 = {a.t0:g}")
+    elif a.kind == "dcrit":
+        lines.append(f"dcrit: d_crit of every combination at {len(a.phis)} phases"
+                     + (f", x1 - x2 traces at {len(a.traces)}" if a.traces else "")
+                     + f", {a.samples} samples per joint orbit")
+    elif a.kind == "bifurcation":
+        from .analysis.bifurcation import d_values
+
+        branches = f"{len(a.branches)} branches" if a.branches else \
+            "every combination of the catalogue"
+        lines.append(f"bifurcation: {branches} x {d_values(a.start, a.stop, a.step).size} "
+                     f"steps of d from {a.start:g} to {a.stop:g} by {a.step:g}")
+    elif a.kind == "design":
+        free = 4  # d, phi, k_c and c_c are each moved by +-perturbation_steps
+        lines.append(f"design: target {a.target or '(give --target)'}; {a.candidates} "
+                     f"candidates screened on {a.screen_n} samples, the best {a.refine} rerun "
+                     f"on {scene.initial_conditions.count}; {2 * a.perturbation_steps * free} "
+                     f"perturbed points on {a.robust_n or scene.initial_conditions.count} "
+                     f"samples; d_crit over {a.phi_points} phases")
+    if scene.catalogue is not None:
+        c = scene.catalogue
+        lines.append(f"catalogue: {c.grid} x {c.grid} grid + {c.random} random initial "
+                     "conditions of one body")
+    lines.append(f"output: {scene.output}")
+    return "\n".join(lines)

@@ -86,3 +86,29 @@ def test_check_after_a_sweep_compares_the_stored_labels(tmp_path):
     assert report["changed"] == 5
     assert all(k.startswith("diverged -> ") for k in report["changes"])
     assert report["wall_s"] == float(ds.attrs["wall_s"])  # sample = all 50 trajectories
+
+
+def test_fail_over_names_the_share_that_exceeds_it():
+    from softimpact_cli.check import over_limit
+
+    report = {"kind": "labels", "changed_share": 0.04, "changed": 2, "sample": 50}
+    assert over_limit(report, None) is None and over_limit(report, 0.05) is None
+    assert "label change share 0.04 > --fail-over 0.01" in over_limit(report, 0.01)
+    assert "d_crit" in over_limit({"kind": "d_crit", "max_change": 1e-3}, 1e-6)
+
+
+def test_check_fail_over_exits_1(monkeypatch, tmp_path):
+    from click.testing import CliRunner
+
+    from softimpact_cli import check as check_module
+    from softimpact_cli.cli import main
+
+    report = {"kind": "labels", "sample": 10, "changed": 3, "changed_share": 0.3,
+              "changes": {"A -> B": 3}, "wall_s": 1.0, "tight_wall_s": 2.0, "wall_ratio": 2.0}
+    monkeypatch.setattr(check_module, "check_scene", lambda *a, **k: report)
+    scene = tmp_path / "s.toml"
+    scene.write_text(SWEEP.replace("{out}", str(tmp_path / "x.h5")))
+    failed = CliRunner().invoke(main, ["check", str(scene), "--fail-over", "0.1"])
+    assert failed.exit_code == 1 and "--fail-over 0.1" in failed.output
+    passed = CliRunner().invoke(main, ["check", str(scene), "--fail-over", "0.5"])
+    assert passed.exit_code == 0, passed.output

@@ -21,7 +21,7 @@ from math import gcd
 
 import numpy as np
 
-from ..config import IntegratorSettings
+from ..config import ConfigError, IntegratorSettings
 from ..engine import Problem, classify_state, flow, record_trajectory
 from ..kernels.status import outcome
 from ..labels import Label, shift
@@ -107,6 +107,17 @@ class Catalogue:
             if combo.name == name:
                 return combo
         raise KeyError(name)
+
+
+def require_attractors(catalogue: Catalogue, kind: str, source: str) -> None:
+    """Stop (ConfigError, one line) when the search found no attractor: ``kind`` (dcrit,
+    bifurcation, map) has nothing to follow or count without one."""
+    if catalogue.attractors:
+        return
+    counts = catalogue.counts
+    raise ConfigError(f"{source}: catalogue: no attractor found ({catalogue.n_samples} samples: "
+                      f"{counts.get('diverged', 0)} diverged, {counts.get('unresolved', 0)} "
+                      f"unresolved); {kind} needs at least one")
 
 
 def body_problem(system: System, values: dict, integrator: IntegratorSettings) -> Problem:

@@ -16,6 +16,7 @@ from ..analysis.catalogue import (
     body_problem,
     catalogue_dataset,
     combinations,
+    require_attractors,
     right_attractors,
     sample_states,
 )
@@ -225,6 +226,8 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     echo(f"executor: {executor.describe()}")
 
     catalogues, names = prepare_catalogues(scene)
+    if scene.analysis.kind == "map":  # counts need d_crit: stop before any chunk or file
+        require_attractors(next(iter(catalogues.values())), "map", str(scene.source))
     echo(f"catalogue: {len(names)} solutions: {', '.join(names)}")
     ic = scene.initial_conditions
     t0_per_sample = None

@@ -1,0 +1,231 @@
+"""Compare two results of the same scene layout (``softimpact compare A B``).
+
+Sweeps (basins, stability, map): the labels point by point (the same grid and the same
+initial conditions are required) and, per solution and grid point, the share of the
+initial conditions reaching it in each result with its 95% Wilson interval. Critical
+distances: d_crit per combination and phase. Bifurcations: the destruction point of
+each branch. The report is a dict; :func:`limits_exceeded` says which of the CI limits
+it passes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .config import GRID_AXES, ConfigError
+from .info import grid_dims, grid_point
+
+SWEEP_KINDS = ("basins", "stability", "map")
+COMPARABLE = (*SWEEP_KINDS, "dcrit", "bifurcation")
+
+
+def compare_results(a, b, name_a: str = "A", name_b: str = "B") -> dict:
+    """The differences of result ``b`` from result ``a`` (xarray Datasets).
+
+    ConfigError (one line) when the two cannot be compared: another analysis kind, a
+    kind compare does not take, or another grid, phase set or set of initial conditions.
+    """
+    kind_a, kind_b = a.attrs.get("analysis"), b.attrs.get("analysis")
+    if kind_a not in COMPARABLE:
+        raise ConfigError(f"{name_a}: holds a {kind_a} result; compare takes "
+                          f"{', '.join(COMPARABLE)} results")
+    if kind_b != kind_a:
+        raise ConfigError(f"{name_b}: holds a {kind_b} result, {name_a} a {kind_a} result; "
+                          "compare needs two results of the same kind")
+    for ds, name in ((a, name_a), (b, name_b)):
+        if int(ds.attrs.get("complete", 1)) != 1:
+            raise ConfigError(f"{name}: is incomplete; finish it with --resume first")
+    report = {"analysis": kind_a, "a": name_a, "b": name_b}
+    if kind_a in SWEEP_KINDS:
+        report.update(compare_sweeps(a, b, name_a, name_b))
+    elif kind_a == "dcrit":
+        report.update(compare_dcrit(a, b, name_a, name_b))
+    else:
+        report.update(compare_bifurcations(a, b))
+    return report
+
+
+def _same(a, b, what: str, name_a: str, name_b: str) -> None:
+    """ConfigError naming ``what`` when the arrays a and b differ (shape or values)."""
+    a, b = np.asarray(a), np.asarray(b)
+    if a.shape != b.shape:
+        raise ConfigError(f"{name_b}: {what} differs from {name_a}'s (shape {b.shape} vs "
+                          f"{a.shape}); compare needs the same grid and initial conditions")
+    if a.dtype.kind in "fc" and not np.allclose(a, b, rtol=1e-12, atol=0.0, equal_nan=True):
+        raise ConfigError(f"{name_b}: {what} differs from {name_a}'s; compare needs the same "
+                          "grid and initial conditions")
+    if a.dtype.kind not in "fc" and not np.array_equal(a, b):
+        raise ConfigError(f"{name_b}: {what} differs from {name_a}'s; compare needs the same "
+                          "grid and initial conditions")
+
+
+def _names(ds, dims: list[str]) -> np.ndarray:
+    """Per-trajectory label names, over ``dims`` (grid dims, then initial-condition dims)."""
+    table = dict(zip((int(c) for c in ds["label_code"].values),
+                     (str(n) for n in ds["label_name"].values), strict=True))
+    return np.vectorize(table.__getitem__, otypes=[object])(ds["label"].transpose(*dims).values)
+
+
+def compare_sweeps(a, b, name_a: str, name_b: str) -> dict:
+    """Label agreement point by point and share differences per solution and grid point."""
+    from .analysis.stability import wilson_interval
+
+    _same(list(grid_dims(a)), list(grid_dims(b)), "grid layout", name_a, name_b)
+    for axis in GRID_AXES:
+        _same(a[axis].values, b[axis].values, f"grid axis {axis}", name_a, name_b)
+    ic_dims = str(a.attrs.get("ic_dims", "")).split()
+    _same(ic_dims, str(b.attrs.get("ic_dims", "")).split(), "initial-condition layout",
+          name_a, name_b)
+    for dim in ic_dims:
+        _same(a[dim].values, b[dim].values, f"initial conditions ({dim})", name_a, name_b)
+    for var in ("initial_state", "sample_t0"):
+        if (var in a) != (var in b):
+            raise ConfigError(f"{name_b}: {var} is in only one of the two results; compare "
+                              "needs the same initial conditions")
+        if var in a:
+            _same(a[var].values, b[var].values, var.replace("_", " "), name_a, name_b)
+    dims = list(grid_dims(a))
+    la, lb = _names(a, dims + ic_dims), _names(b, dims + ic_dims)
+    grid_shape = la.shape[: len(dims)]
+    n_points = int(np.prod(grid_shape))
+    la, lb = la.reshape(n_points, -1), lb.reshape(n_points, -1)
+    n = la.shape[1]
+    changed = la != lb
+    changes: dict[str, int] = {}
+    for x, y in zip(la[changed], lb[changed], strict=True):
+        changes[f"{x} -> {y}"] = changes.get(f"{x} -> {y}", 0) + 1
+    solutions = sorted(set(la.ravel()) | set(lb.ravel()))
+    shares = []
+    for k, index in enumerate(np.ndindex(*grid_shape)):
+        rows = {}
+        for s in solutions:
+            ka, kb = int(np.sum(la[k] == s)), int(np.sum(lb[k] == s))
+            if ka == kb == 0:
+                continue
+            (lo_a,), (hi_a,) = wilson_interval(np.array([ka]), n)
+            (lo_b,), (hi_b,) = wilson_interval(np.array([kb]), n)
+            rows[s] = {"a": ka / n, "a_ci95": [float(lo_a), float(hi_a)],
+                       "b": kb / n, "b_ci95": [float(lo_b), float(hi_b)],
+                       "change": (kb - ka) / n}
+        shares.append({**grid_point(a, index), "n": n, "shares": rows})
+    largest = max((abs(r["change"]) for p in shares for r in p["shares"].values()),
+                  default=0.0)
+    return {"trajectories": int(la.size), "label_changed": int(changed.sum()),
+            "label_change_share": float(changed.mean()) if la.size else 0.0,
+            "changes": changes, "max_share_change": float(largest), "points": shares}
+
+
+def compare_dcrit(a, b, name_a: str, name_b: str) -> dict:
+    """d_crit of every combination at every phase: B - A."""
+    _same(a["phi"].values, b["phi"].values, "phase grid (phi)", name_a, name_b)
+    names_a = [str(n) for n in a["combination_label"].values]
+    names_b = [str(n) for n in b["combination_label"].values]
+    rows = {}
+    for name in sorted(set(names_a) | set(names_b)):
+        if name not in names_a or name not in names_b:
+            rows[name] = {"in": name_a if name in names_a else name_b}
+            continue
+        da = a["d_crit"].values[names_a.index(name)]
+        db = b["d_crit"].values[names_b.index(name)]
+        diff = np.abs(db - da)
+        worst = int(np.nanargmax(diff)) if np.isfinite(diff).any() else 0
+        rows[name] = {"max_change": float(np.nanmax(diff)) if np.isfinite(diff).any() else 0.0,
+                      "at_phi": float(a["phi"].values[worst])}
+    largest = max((r.get("max_change", 0.0) for r in rows.values()), default=0.0)
+    only = sorted(n for n, r in rows.items() if "in" in r)
+    return {"combinations": rows, "max_d_change": float(largest), "only_in_one": only}
+
+
+def compare_bifurcations(a, b) -> dict:
+    """Destruction point (d) of every branch both results follow: B - A."""
+    da = {str(n): float(v) for n, v in zip(a["branch_name"].values, a["destroyed_at"].values,
+                                           strict=True)}
+    db = {str(n): float(v) for n, v in zip(b["branch_name"].values, b["destroyed_at"].values,
+                                           strict=True)}
+    rows = {}
+    for name in sorted(set(da) | set(db)):
+        x, y = da.get(name), db.get(name)
+        row = {"a": x, "b": y}
+        if x is not None and y is not None:
+            if np.isfinite(x) and np.isfinite(y):
+                row["change"] = y - x
+            elif np.isfinite(x) != np.isfinite(y):
+                row["change"] = "destroyed in one only"
+            else:
+                row["change"] = 0.0
+        rows[name] = row
+    numeric = [abs(r["change"]) for r in rows.values() if isinstance(r.get("change"), float)]
+    one_sided = [n for n, r in rows.items() if not isinstance(r.get("change", 0.0), float)
+                 or "change" not in r]
+    return {"branches": rows, "max_d_change": max(numeric, default=0.0),
+            "differ_in_kind": one_sided}
+
+
+def limits_exceeded(report: dict, max_label_change: float | None = None,
+                    max_share_change: float | None = None,
+                    max_d_change: float | None = None) -> list[str]:
+    """Why the report fails the given limits (empty: it passes)."""
+    why = []
+    if max_label_change is not None and "label_change_share" in report \
+            and report["label_change_share"] > max_label_change:
+        why.append(f"label change share {report['label_change_share']:.4f} > "
+                   f"--max-label-change {max_label_change:g}")
+    if max_share_change is not None and "max_share_change" in report \
+            and report["max_share_change"] > max_share_change:
+        why.append(f"largest share change {report['max_share_change']:.4f} > "
+                   f"--max-share-change {max_share_change:g}")
+    if max_d_change is not None and "max_d_change" in report:
+        if report["max_d_change"] > max_d_change:
+            why.append(f"largest d change {report['max_d_change']:.4g} > "
+                       f"--max-d-change {max_d_change:g}")
+        if report.get("only_in_one") or report.get("differ_in_kind"):
+            why.append("a combination or branch differs in kind: "
+                       + ", ".join(report.get("only_in_one") or report.get("differ_in_kind")))
+    return why
+
+
+def format_comparison(report: dict, max_points: int = 20) -> str:
+    """The report as plain text."""
+    head = f"{report['analysis']}: {report['b']} against {report['a']}"
+    lines = [head]
+    if report["analysis"] in SWEEP_KINDS:
+        if report["label_changed"] == 0:
+            lines.append(f"labels: identical ({report['trajectories']} trajectories)")
+        else:
+            lines.append(f"labels: {report['label_changed']} of {report['trajectories']} "
+                         f"changed ({100 * report['label_change_share']:.2f}%)")
+            for change, count in sorted(report["changes"].items(), key=lambda kv: -kv[1]):
+                lines.append(f"  {change}: {count}")
+        lines.append(f"largest share change at a grid point: {report['max_share_change']:.4f}")
+        width = max([len(s) for p in report["points"] for s in p["shares"]] + [8])
+        for point in report["points"][:max_points]:
+            where = ", ".join(f"{k}={point[k]:.6g}" if isinstance(point[k], float)
+                              else f"{k}={point[k]}" for k in GRID_AXES)
+            lines.append(f"{where} ({point['n']} trajectories)")
+            lines.append(f"  {'solution':{width}s} {'A':>6s} {'95% interval':>15s} "
+                         f"{'B':>6s} {'95% interval':>15s} {'B - A':>7s}")
+            for s, r in point["shares"].items():
+                lines.append(f"  {s:{width}s} {r['a']:6.3f} [{r['a_ci95'][0]:.3f}, "
+                             f"{r['a_ci95'][1]:.3f}] {r['b']:6.3f} [{r['b_ci95'][0]:.3f}, "
+                             f"{r['b_ci95'][1]:.3f}] {r['change']:+7.3f}")
+        if len(report["points"]) > max_points:
+            lines.append(f"... {len(report['points']) - max_points} more grid points "
+                         "(--json lists all)")
+    elif report["analysis"] == "dcrit":
+        lines.append(f"largest d_crit change: {report['max_d_change']:.4g}")
+        lines.append(f"  {'combination':16s} {'max |B - A|':>12s} {'at phi':>8s}")
+        for name, r in report["combinations"].items():
+            if "in" in r:
+                lines.append(f"  {name:16s} only in {r['in']}")
+            else:
+                lines.append(f"  {name:16s} {r['max_change']:12.4g} {r['at_phi']:8.4f}")
+    else:
+        lines.append(f"largest change of a destruction point: {report['max_d_change']:.4g}")
+        lines.append(f"  {'branch':16s} {'A: destroyed at d':>18s} {'B':>10s} {'B - A':>10s}")
+        for name, r in report["branches"].items():
+            def at(v):
+                return "-" if v is None else ("never" if not np.isfinite(v) else f"{v:.4g}")
+            change = r.get("change", "branch in one only")
+            change = f"{change:+.4g}" if isinstance(change, float) else change
+            lines.append(f"  {name:16s} {at(r['a']):>18s} {at(r['b']):>10s} {change:>10s}")
+    return "\n".join(lines)

@@ -1,0 +1,167 @@
+"""``softimpact info`` as readable text: what applies to the result's kind, as tables.
+
+Works on the dict of :func:`softimpact_cli.info.describe` (or ``incomplete_summary``)
+and the dataset; never prints a Python repr.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+# parameters a kind varies or does not use, left out of its "parameters" line
+NOT_FIXED = {
+    "bifurcation": ("d",),
+    "dcrit": ("d", "phi", "k_c", "c_c"),
+    "catalogue": ("d", "k_c", "c_c"),
+    "design": ("d", "phi", "k_c", "c_c"),
+}
+SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
+                   "combinations", "branches", "d_crit", "orbit", "variables", "target",
+                   "best", "runners_up", "reference", "robustness"}
+
+
+def text(value) -> str:
+    """One value as text: numbers to 6 significant digits, mappings as 'key value, ...'."""
+    if isinstance(value, bool) or value is None:
+        return {True: "yes", False: "no", None: "-"}[value]
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, dict):
+        return ", ".join(f"{k} {text(v)}" for k, v in value.items())
+    if isinstance(value, list | tuple):
+        return ", ".join(text(v) for v in value)
+    return str(value)
+
+
+def _parameters(summary: dict, ds) -> str:
+    """The fixed parameters: the kind's varied ones and a sweep's grid axes left out."""
+    left_out = set(NOT_FIXED.get(summary.get("analysis"), ()))
+    left_out |= set(str(ds.attrs.get("grid_swept", "")).split())
+    kept = [p for p in str(summary["parameters"]).split(", ")
+            if p.split("=", 1)[0] not in left_out]
+    return ", ".join(f"{k}={float(v):.6g}" if _is_number(v) else f"{k}={v}"
+                     for k, v in (p.split("=", 1) for p in kept))
+
+
+def _is_number(v: str) -> bool:
+    try:
+        float(v)
+    except ValueError:
+        return False
+    return True
+
+
+def _where(point: dict) -> str:
+    return ", ".join(f"{a}={text(point[a])}" for a in ("d", "phi", "k_c", "c_c", "t0"))
+
+
+def format_summary(summary: dict, ds, max_points: int = 50) -> str:
+    """The whole ``info`` text of a result (``summary`` from ``describe``)."""
+    from .info import format_catalogue, format_design
+
+    kind = summary.get("analysis")
+    lines = []
+    if "progress" in summary:  # an unfinished sweep
+        p = summary["progress"]
+        lines.append(f"{kind}: incomplete, {p['chunks_done']} of {p['chunks']} chunks done "
+                     f"({100 * p['fraction']:.0f}%); finish with "
+                     f"softimpact sweep {summary.get('scene_source')} -o RESULT --resume")
+    if kind == "design":
+        lines.append(format_design(ds))
+    first = {k: summary[k] for k in ("analysis", "model", "bodies") if k in summary}
+    for key, value in {**first, **summary}.items():
+        if key in SHOWN_ELSEWHERE or key == "progress":
+            continue
+        if key == "complete":
+            value = bool(value)
+        if key == "parameters":
+            value = _parameters(summary, ds)
+        elif key == "wall_s":
+            value = f"{value:.2f} s" if isinstance(value, float) else value
+        elif key == "steps_by_method" and kind == "trajectory":
+            value = "; ".join(f"{phase}: {text(v)}" for phase, v in value.items())
+        lines.append(f"{key:28s} {text(value)}")
+    if kind == "bifurcation" and "d" in ds.coords:
+        d = ds["d"].values
+        lines.append(f"{'d':28s} {d[0]:.6g} -> {d[-1]:.6g} ({d.size} steps)")
+    if "orbit" in summary:
+        lines.append(f"orbit: {len(summary['orbit'])} section point(s) of "
+                     f"({', '.join(summary['variables'])})")
+        lines += [f"  {'  '.join(f'{x:+.6f}' for x in row)}" for row in summary["orbit"]]
+    if "attractor" in ds.dims and kind != "design":
+        lines.append("catalogue:")
+        lines += [f"  {line}" for line in format_catalogue(ds).splitlines()]
+    if "branches" in summary:
+        lines += _branch_table(summary["branches"])
+    if "d_crit" in summary:
+        lines += _dcrit_table(summary["d_crit"])
+    if "stability" in summary:
+        lines += _stability_table(summary["stability"], max_points)
+    elif summary.get("points"):
+        lines += _point_table(summary["points"], max_points)
+    lines.append("scene:")
+    lines += [f"  {line}" for line in summary.get("scene", "").splitlines()]
+    return "\n".join(lines)
+
+
+def _branch_table(branches: dict) -> list[str]:
+    width = max([len(n) for n in branches] + [6])
+    out = [f"{'branch':{width}s}  {'destroyed at d':>14s}  {'falls to':16s}  impacting for d in"]
+    for name, b in branches.items():
+        lo, hi = b["impacting_range"]
+        at = "never" if b["destroyed_at"] is None else f"{b['destroyed_at']:.6g}"
+        impacting = "-" if lo is None else f"[{lo:.6g}, {hi:.6g}]"
+        out.append(f"{name:{width}s}  {at:>14s}  {b['falls_to'] or '-':16s}  {impacting}")
+    return out
+
+
+def _dcrit_table(dcrit: dict) -> list[str]:
+    """All values when there are few phases, else the range over phi with where."""
+    width = max([len(n) for n in dcrit] + [11])
+    phis = next(iter(dcrit.values()))["phi"] if dcrit else []
+    if len(phis) <= 6:
+        out = [f"{'d_crit':{width}s}  " + "  ".join(f"{'phi=' + f'{p:.4g}':>10s}"
+                                                    for p in phis)]
+        for name, r in dcrit.items():
+            out.append(f"{name:{width}s}  " + "  ".join(
+                f"{'-' if v is None else f'{v:.4f}':>10s}" for v in r["d_crit"]))
+        return out
+    head = f"d_crit over {len(phis)} phases"
+    width = max(width, len(head))
+    out = [f"{head:{width}s}  "
+           f"{'min':>9s} {'at phi':>8s}  {'max':>9s} {'at phi':>8s}"]
+    for name, r in dcrit.items():
+        v = np.array([np.nan if x is None else x for x in r["d_crit"]], dtype=float)
+        if not np.isfinite(v).any():
+            out.append(f"{name:{width}s}  no finite value")
+            continue
+        i, j = int(np.nanargmin(v)), int(np.nanargmax(v))
+        out.append(f"{name:{width}s}  {v[i]:9.4f} {r['phi'][i]:8.4f}  {v[j]:9.4f} "
+                   f"{r['phi'][j]:8.4f}")
+    return out
+
+
+def _point_table(points: list[dict], max_points: int) -> list[str]:
+    out = [f"grid points ({len(points)}): share of initial conditions per label"]
+    for point in points[:max_points]:
+        shares = ", ".join(f"{n} {f:.3f}" for n, f in sorted(point["fractions"].items()))
+        counted = (f"; predicted {point['predicted']}, found {point['found']} "
+                   f"({point['found_nonimpacting']} non-impacting)"
+                   if "predicted" in point else "")
+        out.append(f"  {_where(point)}: {shares}{counted}")
+    if len(points) > max_points:
+        out.append(f"  ... {len(points) - max_points} more points (--json lists all)")
+    return out
+
+
+def _stability_table(points: list[dict], max_points: int) -> list[str]:
+    out = [f"basin stability ({len(points)} grid points): share [95% Wilson interval]"]
+    for point in points[:max_points]:
+        out.append(f"  {_where(point)} (n = {point['n']})")
+        width = max(len(g) for g in point["shares"])
+        for group, v in point["shares"].items():
+            lo, hi = v["ci95"]
+            out.append(f"    {group:{width}s} {v['share']:.3f} [{lo:.3f}, {hi:.3f}]")
+    if len(points) > max_points:
+        out.append(f"  ... {len(points) - max_points} more points (--json lists all)")
+    return out
