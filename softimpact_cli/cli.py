@@ -193,6 +193,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     from .config import quick as quick_scene
     from .run import run_scene
     from .store import write_result
+    from .store.lock import output_lock
+    from .store.provenance import command_line
 
     sc = load_scene(scene)
     if quick:
@@ -238,12 +240,15 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
         return
     if resume:
         raise ConfigError(f"{scene}: --resume is for sweeps (kind basins or stability)")
-    if out.exists() and not overwrite:
-        raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
     unit = {"catalogue": "initial conditions", "dcrit": "phases", "bifurcation": "branches"}
-    ds = run_scene(sc, progress=None if quiet else functools.partial(
-        _progress_bar, unit=unit.get(sc.analysis.kind, "steps")))
-    write_result(ds, out)
+    # held for the whole run: a second run on the same output is refused at once, not
+    # after it has computed everything
+    with output_lock(out, command_line()):
+        if out.exists() and not overwrite:
+            raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
+        ds = run_scene(sc, progress=None if quiet else functools.partial(
+            _progress_bar, unit=unit.get(sc.analysis.kind, "steps")))
+        write_result(ds, out)
     if ds.attrs.get("analysis") == "catalogue":
         from .info import format_catalogue
 
@@ -258,14 +263,17 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
     """Run a design scene, write its result (shared by ``design`` and ``sweep``), return it."""
     from .info import format_design
     from .store import write_result
+    from .store.lock import output_lock
+    from .store.provenance import command_line
     from .sweep.design import run_design
 
-    if out.exists() and not overwrite:
-        raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
-    ds = run_design(sc, workers=workers, scheduler=scheduler,
-                    echo=(lambda s: None) if quiet else (lambda s: click.echo(s, err=True)),
-                    progress=None if quiet else _progress_bar)
-    write_result(ds, out)
+    with output_lock(out, command_line()):
+        if out.exists() and not overwrite:
+            raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
+        ds = run_design(sc, workers=workers, scheduler=scheduler,
+                        echo=(lambda s: None) if quiet else (lambda s: click.echo(s, err=True)),
+                        progress=None if quiet else _progress_bar)
+        write_result(ds, out)
     click.echo(format_design(ds))
     click.echo(f"design: {ds.attrs['wall_s']:.1f} s -> {out}")
     return ds
