@@ -293,9 +293,13 @@ def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool)
 @click.option("--quick", is_flag=True, help="At most 100 samples (previews and CI).")
 @click.option("--dry-run", is_flag=True,
               help="Validate SCENE and print what would be computed; write nothing.")
+@click.option("--strict", is_flag=True,
+              help="Exit with status 3 (after writing) when too many trajectories stay "
+                   "unresolved or diverge, or no solution is found.")
 @_interruptible
 @_user_errors
-def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, dry_run):
+def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, dry_run,
+           strict):
     """Choose (d, phi, k_c, c_c) so that only the target solution survives (design SCENE).
 
     SCENE must have [analysis] kind = "design" (the other kinds, listed in
@@ -327,7 +331,7 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
         return
     from .warmup import announce_compilation
     announce_compilation(sc)
-    _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, False)
+    _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
 
 
 def _store_check(scene, out: Path, sample: int) -> None:

@@ -228,7 +228,9 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     catalogues, names = prepare_catalogues(scene)
     if scene.analysis.kind == "map":  # counts need d_crit: stop before any chunk or file
         require_attractors(next(iter(catalogues.values())), "map", str(scene.source))
-    echo(f"catalogue: {len(names)} solutions: {', '.join(names)}")
+    echo(f"catalogue: {len(names)} solutions: {', '.join(names)}" if names else
+         "catalogue: no non-impacting solution found (every label will be impacting, "
+         "unresolved or diverged)")
     ic = scene.initial_conditions
     t0_per_sample = None
     if ic.t0 is None:
