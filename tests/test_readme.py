@@ -17,9 +17,6 @@ from softimpact_cli.config import load_scene, quick
 ROOT = Path(__file__).parents[1]
 README = (ROOT / "README.md").read_text()
 MAKEFILE = (ROOT / "Makefile").read_text()
-# Added by other branches of issue 20; checked once they exist (skipped before the merge).
-PENDING_COMMANDS = {"compare"}
-PENDING_OPTIONS = {"--dry-run", "--max-label-change", "--max-share-change", "--fail-over"}
 PLACEHOLDER = re.compile(r"^[A-Z][A-Z0-9_]*(\.h5|\.png|\.toml)?$")
 
 
@@ -68,8 +65,6 @@ def resolve(words: list[str]) -> tuple[click.Command, list[str]]:
     while isinstance(command, click.Group) and rest and not rest[0].startswith("-"):
         name = rest.pop(0)
         if name not in command.commands:
-            if name in PENDING_COMMANDS:
-                pytest.skip(f"`softimpact {name}` is added by another branch of issue 20")
             pytest.fail(f"README: `softimpact {' '.join(words)}`: no subcommand {name!r}")
         command = command.commands[name]
     return command, rest
@@ -89,8 +84,6 @@ def test_readme_command_names_existing_subcommand_options_and_files(words):
     for w in rest:
         w = w.strip("[]")
         if w.startswith("-") and w not in ("-",):
-            if w not in options and w in PENDING_OPTIONS:
-                pytest.skip(f"{w} is added by another branch of issue 20")
             assert w in options, f"README: `softimpact {' '.join(words)}`: no option {w}"
         if w.startswith("configs/"):
             assert (ROOT / w).is_file(), f"README: `softimpact {' '.join(words)}`: no {w}"
@@ -120,10 +113,7 @@ def test_cheap_readme_commands_run(tmp_path, monkeypatch):
         words = without_optional(line)
         if not words or not _cheap(words, tmp_path, written):
             continue
-        command, rest = resolve(words)  # skips the file before the merge if one is pending
-        if any(w in PENDING_OPTIONS for w in rest) and not any(
-                w in p.opts for p in command.params for w in PENDING_OPTIONS):
-            continue
+        resolve(words)  # fails on a subcommand the CLI lacks
         result = runner.invoke(main, words)
         assert result.exit_code == 0, f"`softimpact {' '.join(words)}`: {result.output}"
         if ">" in line:  # `softimpact example KIND > FILE`

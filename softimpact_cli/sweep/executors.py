@@ -157,6 +157,7 @@ class DaskExecutor:
         from dask.distributed import Client, LocalCluster, as_completed
 
         cluster = client = None
+        finished = False
         try:  # from the start: an interrupted LocalCluster start is closed too
             if self.scheduler.startswith("local:"):
                 n = int(self.scheduler.split(":", 1)[1])
@@ -174,7 +175,14 @@ class DaskExecutor:
             index_of = {f.key: int(f.key.split("-")[1]) for f in futures}
             for future, result in as_completed(futures, with_results=True):
                 yield index_of[future.key], result
+            finished = True
         finally:  # on a remote scheduler, closing the client cancels what it still wants
+            # Interrupted: as_completed's gathers still in flight fail when the client
+            # closes, and tornado logs each with a traceback on the loop's thread; they
+            # are expected then, so that logger stays quiet (the process is ending).
+            if not finished:
+                logging.getLogger("tornado.application").setLevel(logging.CRITICAL)
+                logging.getLogger("distributed").setLevel(logging.CRITICAL)
             if client is not None:
                 client.close()
             if cluster is not None:

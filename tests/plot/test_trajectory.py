@@ -19,7 +19,8 @@ def trajectory(max_penetration: float, impacting: int) -> xr.Dataset:
         attrs={"analysis": "trajectory", "model": "duffing", "bodies": 2,
                "forcing_period": 2.0, "t0": 1.0, "outcome": "converged", "period": 1,
                "max_penetration": max_penetration, "impacting": impacting,
-               "parameters": "c=0.05, d=6.0, phi=1.9634954084936207"})
+               "parameters": "c=0.05, d=6.0, phi=1.9634954084936207",
+               "scene_text": "# synthetic: no scene"})
 
 
 def summary(fig) -> str:

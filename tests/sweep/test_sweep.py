@@ -48,9 +48,11 @@ def scene_text(out, res=6):
 
 
 def equal_results(a: xr.Dataset, b: xr.Dataset) -> None:
+    """Same values, dimension by dimension (a file opened with xr.open_dataset has x1 last)."""
     for v in DATA_VARS:
-        assert np.array_equal(a[v].values, b[v].values), v
-    assert np.array_equal(a["attractor_points"].values, b["attractor_points"].values,
+        assert np.array_equal(a[v].values, b[v].transpose(*a[v].dims).values), v
+    assert np.array_equal(a["attractor_points"].values,
+                          b["attractor_points"].transpose(*a["attractor_points"].dims).values,
                           equal_nan=True)
 
 
