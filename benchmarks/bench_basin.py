@@ -27,15 +27,12 @@ numba kernels). The table goes to ``results/bench/basin_speed.md``.
 from __future__ import annotations
 
 import argparse
-import cProfile
-import io
+import functools
 import multiprocessing as mp
-import pstats
 import sys
 import tempfile
 import time
 from collections import Counter
-from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 
@@ -50,27 +47,19 @@ from _common import (  # the benchmarks folder is on sys.path when this script r
     scene_at,
     stability_scene,
 )
+from scipy_contestant import RECORD as SCIPY_RECORD
+from scipy_contestant import TRANSIENT as SCIPY_TRANSIENT
+from scipy_contestant import scipy_label
+from study_method import TRANSIENT_PERIODS as STUDY_PERIODS
+from study_method import StudyMethod
+from where_time_goes import StageClock, phases, rhs_floor
 
-from softimpact_cli.analysis.catalogue import label_orbit
-from softimpact_cli.engine import Problem, classify_state, flow
-from softimpact_cli.kernels import orbit as orbit_kernels
-from softimpact_cli.kernels.status import outcome
-from softimpact_cli.labels import DIVERGED, UNRESOLVED, name_of
-from softimpact_cli.sweep import executors, runner
+from softimpact_cli.labels import name_of
 from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep
-
-STUDY_PERIODS = 1000  # the study's fixed transient (forcing periods)
-STUDY_CLASSIFY_PERIODS = 100  # after it: periods allowed to find the repeat
-SCIPY_TRANSIENT = 300
-SCIPY_RECORD = 60  # recorded stroboscopic points after the transient
-SCIPY_REPEAT_TOL = 1e-5  # section points repeating to this (scaled), rtol 1e-8 integration
-MAX_ORBIT_PERIOD = 30
 
 REFERENCE = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
                  max_periods=6000)
 
-
-# ----------------------------------------------------------------------------- helpers
 
 def labels_of(ds) -> tuple[np.ndarray, tuple[str, ...]]:
     names = tuple(str(x) for x in ds["combination_name"].values) \
@@ -78,134 +67,25 @@ def labels_of(ds) -> tuple[np.ndarray, tuple[str, ...]]:
     return ds["label"].values.reshape(-1), names
 
 
-def pool(n: int):
-    return mp.get_context("fork").Pool(n)
+_TASK = None  # the labelling function of the pool below (inherited by the forked workers)
 
 
-def _name_classification(cls, catalogue, tol) -> str:
-    """As ``sweep.chunks.run_chunk`` names an outcome."""
-    if cls.status == 0:
-        return label_orbit(catalogue, cls.orbit, cls.impacting, tol).name
-    return UNRESOLVED if outcome(cls.status) == "unresolved" else DIVERGED
+def _run_task(state) -> str:
+    return _TASK(state)
 
 
-# ------------------------------------------------------- contestant 2: the study's method
-
-_STUDY = {}
-
-
-def _study_one(state) -> str:
-    g = _STUDY
-    T = g["flow"].period
-    t_end = STUDY_PERIODS * T
-    status, y, _ = flow(g["flow"], state, 0.0, t_end)
-    if status != 0:
-        return UNRESOLVED if outcome(status) == "unresolved" else DIVERGED
-    cls = classify_state(g["classify"], y, t_end)
-    return _name_classification(cls, g["catalogue"], g["tol"])
-
-
-def study_problems(scene):
-    study = Problem(scene.system, dict(scene.values), scene.integrator).with_integrator(
-        method="rk4", steps_per_period=1440, locate_switches=False)
-    return study, study.with_integrator(max_periods=STUDY_CLASSIFY_PERIODS,
-                                        max_orbit_period=MAX_ORBIT_PERIOD)
-
-
-# ------------------------------------------------------------- contestant 3: plain scipy
-
-_SCIPY = {}
-
-
-def scipy_one(state, values, method="RK45", catalogue=None, tol=1e-3,
-              transient=SCIPY_TRANSIENT, record=SCIPY_RECORD) -> str:
-    """What a Python user would write: solve_ivp with a terminal event on x1 - x2 = d,
-    restarted with the contact flag flipped; fixed transient, then stroboscopic points."""
-    from scipy.integrate import solve_ivp
-
-    c, k1, k2, F, w = (float(values[k]) for k in ("c", "k1", "k2", "F", "w"))
-    d, phi, kc, cc = (float(values[k]) for k in ("d", "phi", "k_c", "c_c"))
-    T = 2 * np.pi / w
-
-    def rhs(t, y, contact):
-        x1, v1, x2, v2 = y
-        fc = kc * (x1 - x2 - d) + cc * (v1 - v2) if contact else 0.0
-        return [v1, F * np.sin(w * t) - c * v1 - k1 * x1 - k2 * x1 ** 3 - fc,
-                v2, F * np.sin(w * t + phi) - c * v2 - k1 * x2 - k2 * x2 ** 3 + fc]
-
-    def gap(t, y, contact):
-        return y[0] - y[2] - d
-
-    gap.terminal = True
-    t, y = 0.0, np.array(state, dtype=float)
-    contact = bool(y[0] - y[2] >= d)
-    t_rec0 = transient * T
-    t_end = (transient + record) * T
-    strobe_t = t_rec0 + T * np.arange(record + 1)
-    strobe = []
-    impacting = False  # any contact during the recorded periods
-    events = 0
-    while t < t_end:
-        gap.direction = -1.0 if contact else 1.0
-        t_eval = strobe_t[strobe_t > t] if t > 0.0 or t_rec0 > 0.0 else strobe_t
-        sol = solve_ivp(rhs, (t, t_end), y, method=method, rtol=1e-8, atol=1e-10,
-                        events=gap, args=(contact,), t_eval=t_eval)
-        if sol.status == -1:
-            return DIVERGED
-        if len(sol.t):
-            strobe.extend(np.asarray(sol.y).T)
-        if sol.status == 1:  # event: flip the contact state and restart there
-            t, y = float(sol.t_events[0][0]), sol.y_events[0][0].copy()
-        else:  # reached t_end, the last of t_eval
-            t, y = t_end, sol.y[:, -1]
-        if contact and t > t_rec0:  # in contact during part of the recorded window
-            impacting = True
-        if sol.status == 1:
-            contact = not contact
-            events += 1
-            if events > 200 * (transient + record):  # chattering: give up
-                return UNRESOLVED
-        if not np.all(np.isfinite(y)) or np.max(np.abs(y)) > 1e6:
-            return DIVERGED
-    pts = np.array(strobe)
-    n = len(pts) - 1
-    scale = max(1.0, float(np.max(np.abs(pts[n]))))
-    q = 0
-    for cand in range(1, MAX_ORBIT_PERIOD + 1):
-        if n < 2 * cand:
-            break
-        if np.max(np.abs(pts[n - cand + 1:n + 1] - pts[n - 2 * cand + 1:n - cand + 1])) \
-                <= SCIPY_REPEAT_TOL * scale:
-            q = cand
-            break
-    if q == 0:
-        return UNRESOLVED
-    if catalogue is None:
-        return f"P{q}{' impacting' if impacting else ''}"
-    return label_orbit(catalogue, pts[n - q + 1:n + 1], impacting, tol).name
-
-
-def _scipy_one(state) -> str:
-    g = _SCIPY
-    return scipy_one(state, g["values"], g["method"], g["catalogue"], g["tol"])
-
-
-# -------------------------------------------------------------------------- benchmark
-
-def timed_pool(func, states, setup: dict, store: dict) -> tuple[list[str], float]:
-    """Run ``func`` on each state on a fork pool of WORKERS; (labels, wall)."""
-    store.clear()
-    store.update(setup)
+def timed_pool(label, states) -> tuple[list[str], float]:
+    """``label(state)`` on each state on a fork pool of WORKERS; (labels, wall s)."""
+    global _TASK
+    _TASK = label
     t = time.perf_counter()
-    with pool(WORKERS) as p:
-        out = p.map(func, [np.array(s) for s in states], chunksize=1)
+    with mp.get_context("fork").Pool(WORKERS) as p:
+        out = p.map(_run_task, [np.array(s) for s in states], chunksize=1)
     return out, time.perf_counter() - t
 
 
 def reference_labels(scene, catalogues, names, states) -> tuple[list[str], float]:
     """The tight reference, labelled exactly as a sweep labels (run_chunk), on 2 workers."""
-    from dataclasses import replace
-
     return label_states(scene, catalogues, names, states, replace(scene.integrator,
                                                                   **REFERENCE))
 
@@ -216,159 +96,16 @@ def agreement(got: list[str], ref: list[str]) -> tuple[int, int, str]:
     return same, len(ref), "; ".join(f"{k} x{v}" for k, v in diffs.most_common(4))
 
 
-@contextmanager
-def kernel_timer(acc: dict):
-    """Time every call into the numba kernels (engine calls them as orbit.<name>)."""
-    saved = {}
-    for name in ("classify", "classify_near", "flow", "record"):
-        fn = getattr(orbit_kernels, name)
-        saved[name] = fn
-
-        def wrapped(*args, _fn=fn, **kw):
-            t = time.perf_counter()
-            try:
-                return _fn(*args, **kw)
-            finally:
-                acc[acc["phase"]] = acc.get(acc["phase"], 0.0) + time.perf_counter() - t
-        setattr(orbit_kernels, name, wrapped)
-    try:
-        yield acc
-    finally:
-        for name, fn in saved.items():
-            setattr(orbit_kernels, name, fn)
-
-
-@contextmanager
-def phase_timer(acc: dict):
-    """Wall time of the sweep's phases: catalogue, chunks (classification), the rest."""
-    prep, chunk = runner.prepare_catalogues, executors.run_chunk
-    capturable = runner.capturable_orbits
-
-    def timed(fn):
-        def run(*a, **kw):
-            acc["phase"] = "catalogue_kernels"
-            t = time.perf_counter()
-            try:
-                return fn(*a, **kw)
-            finally:
-                acc["catalogue"] = acc.get("catalogue", 0.0) + time.perf_counter() - t
-                acc["phase"] = "other_kernels"
-        return run
-
-    def timed_chunk(*a, **kw):
-        acc["phase"] = "chunk_kernels"
-        t = time.perf_counter()
-        try:
-            return chunk(*a, **kw)
-        finally:
-            acc["chunks"] = acc.get("chunks", 0.0) + time.perf_counter() - t
-            acc["phase"] = "other_kernels"
-
-    runner.prepare_catalogues, executors.run_chunk = timed(prep), timed_chunk
-    runner.capturable_orbits = timed(capturable)
-    try:
-        yield acc
-    finally:
-        runner.prepare_catalogues, executors.run_chunk = prep, chunk
-        runner.capturable_orbits = capturable
-
-
-def profile_default(n_side: int, tmp: Path) -> tuple[str, list[str]]:
-    """Single-process default run of n_side^2 ICs: phases, kernel share, cProfile top."""
-    scene = scene_at(n_side)
-    acc = {"phase": "other_kernels"}
-    with phase_timer(acc), kernel_timer(acc):
-        t = time.perf_counter()
-        run_sweep(scene, tmp / "profile.h5", workers=1, overwrite=True)
-        total = time.perf_counter() - t
-    n = n_side * n_side
-    cat, chunks = acc.get("catalogue", 0.0), acc.get("chunks", 0.0)
-    k_cat, k_chunk = acc.get("catalogue_kernels", 0.0), acc.get("chunk_kernels", 0.0)
-    rest = total - cat - chunks
-    k_all = k_cat + k_chunk + acc.get("other_kernels", 0.0)
-    lines = [
-        f"single-process default run, {n} ICs ({n_side} x {n_side}), wall {total:.2f} s:",
-        f"  catalogue, Newton, critical distances: {cat:5.2f} s ({100 * cat / total:4.1f} %), "
-        f"of which in numba kernels {k_cat:.2f} s ({100 * k_cat / max(cat, 1e-12):.0f} %)",
-        f"  classifying the ICs (run_chunk):      {chunks:6.2f} s ({100 * chunks / total:4.1f} %), "
-        f"of which in numba kernels {k_chunk:.2f} s ({100 * k_chunk / max(chunks, 1e-12):.0f} %)"
-        f"; {1e3 * chunks / n:.2f} ms per IC, Python overhead "
-        f"{1e6 * (chunks - k_chunk) / n:.0f} us per IC",
-        f"  plan, store, HDF5 write, assembly:    {rest:6.2f} s ({100 * rest / total:4.1f} %)",
-        f"  numba kernels overall: {100 * k_all / total:.0f} % of the wall time",
-    ]
-    prof = cProfile.Profile()
-    prof.enable()
-    run_sweep(scene, tmp / "profile.h5", workers=1, overwrite=True)
-    prof.disable()
-    buf = io.StringIO()
-    stats = pstats.Stats(prof, stream=buf).strip_dirs().sort_stats("tottime")
-    stats.print_stats(12)
-    top = [ln for ln in buf.getvalue().splitlines() if ln.strip()]
-    start = next((i for i, ln in enumerate(top) if ln.lstrip().startswith("ncalls")), 0)
-    lines.append("  cProfile (same run again, sorted by own time; numba kernels show under "
-                 "their Python names, e.g. orbit.py(classify)):")
-    lines += ["    " + ln for ln in top[start:start + 13]]
-    return "\n".join(lines), lines
-
-
-def rhs_floor(periods: int = 400, repeats: int = 5) -> str:
-    """How close the integrator runs to bare right-hand-side evaluations: one trajectory of
-    the figure 6(d) pair on its attractor (no contact), CPU time of the whole integration
-    against the same number of bare ``rhs`` calls in a compiled loop (best of repeats)."""
-    from numba import njit
-
-    scene = scene_at(2)
-    problem = Problem(scene.system, scene.values, scene.integrator)
-    T = problem.period
-    y0 = np.array([1.0, 0.0, -1.0, 0.0])
-    A, b, rel, contact = problem.kernel_args()
-
-    def integrate():
-        return orbit_kernels.flow(problem.advance, problem.system.rhs, problem.params,
-                                  y0.copy(), 0.0, periods * T, A, b, rel, contact,
-                                  problem.options())
-
-    @njit
-    def bare(rhs, p, n, h):
-        y = np.array([1.0, 0.0, -1.0, 0.0])
-        out = np.zeros(4)
-        acc = 0.0
-        for i in range(n):
-            rhs(i * h, y, p, 0, out)
-            acc += out[1]
-            y[0] += 1e-12 * out[0]  # the state changes, so no call is hoisted out
-        return acc
-
-    counters = integrate()[3]
-    n_rhs, n_steps = int(counters[3]), int(counters[1])
-    bare(problem.system.rhs, problem.params, 10, T / 100)
-    t_int = t_bare = np.inf
-    for _ in range(repeats):
-        t = time.process_time()
-        integrate()
-        t_int = min(t_int, time.process_time() - t)
-        t = time.process_time()
-        bare(problem.system.rhs, problem.params, n_rhs, T / 100)
-        t_bare = min(t_bare, time.process_time() - t)
-    return (f"integrator against bare right-hand sides ({periods} periods on the attractor, "
-            f"{problem.integrator.method}, {n_steps} steps, {n_rhs} evaluations): "
-            f"{1e9 * t_int / n_rhs:.0f} ns per evaluation inside the integrator, "
-            f"{1e9 * t_bare / n_rhs:.0f} ns bare: the integrator costs {t_int / t_bare:.1f}x "
-            "its right-hand sides (error estimate, dense output, switch watch, contact "
-            "maximum, step control)")
-
-
 def stability_run(n: int, tmp: Path) -> tuple[float, float, dict]:
-    scene = stability_scene(n)
-    acc = {"phase": "other_kernels"}
-    with phase_timer(acc):
-        t = time.perf_counter()
-        ds = run_sweep(scene, tmp / "stability.h5", workers=WORKERS, overwrite=True)
-        wall = time.perf_counter() - t
+    """The figure 14(c)-style basin stability on WORKERS: (wall s, catalogue s, shares)."""
+    clock = StageClock()
+    t = time.perf_counter()
+    ds = run_sweep(stability_scene(n), tmp / "stability.h5", workers=WORKERS,
+                   overwrite=True, echo=clock)
+    wall = time.perf_counter() - t
     codes, names = labels_of(ds)
     shares = Counter(name_of(c, names) for c in codes)
-    return wall, acc.get("catalogue", 0.0), dict(shares.most_common())
+    return wall, clock.catalogue_s(), dict(shares.most_common())
 
 
 def main(argv=None) -> int:
@@ -416,15 +153,11 @@ def main(argv=None) -> int:
     scene = scene_at(n)
     N = n * n
     states = scene.initial_conditions.array()
-    T = 2 * np.pi / float(scene.values["w"])
     tmp = Path(tempfile.mkdtemp(prefix="bench_basin_"))
 
     # warm-up: compile / load every kernel the contestants use (excluded from timings)
     t = time.perf_counter()
     run_sweep(scene_at(4), tmp / "warm.h5", workers=WORKERS)
-    study_flow, study_cls = study_problems(scene)
-    flow(study_flow, states[0], 0.0, T)
-    classify_state(study_cls, states[0], 0.0)
     print(f"warm-up (numba compile/cache load, small sweep): {time.perf_counter() - t:.1f} s")
 
     t = time.perf_counter()
@@ -432,6 +165,8 @@ def main(argv=None) -> int:
     t_cat = time.perf_counter() - t
     catalogue = catalogues[float(scene.values["phi"])]
     tol = scene.analysis.label_tol
+    study_method = StudyMethod.of(scene, catalogue)
+    study_method.label(states[0])  # compiles RK4 (excluded from the timing, as above)
     print(f"catalogue ({t_cat:.1f} s, one process): {', '.join(names)}")
 
     # the sample points: random grid points; the study's and scipy's samples are among them
@@ -475,16 +210,15 @@ def main(argv=None) -> int:
     # 2. study's method
     print(f"[2] study's method (RK4 T/1440, no switch location, {STUDY_PERIODS} periods) on "
           f"{len(idx_study)} ICs ...", flush=True)
-    study, wall_study = timed_pool(_study_one, states[idx_study], {
-        "flow": study_flow, "classify": study_cls, "catalogue": catalogue, "tol": tol}, _STUDY)
+    study, wall_study = timed_pool(study_method.label, states[idx_study])
     print(f"    wall {wall_study:.1f} s ({len(idx_study) / wall_study:.2f} ICs/s)")
 
     # 3. scipy
     print(f"[3] scipy solve_ivp {args.scipy_method} (rtol 1e-8, events, {SCIPY_TRANSIENT} + "
           f"{SCIPY_RECORD} periods) on {len(idx_scipy)} ICs ...", flush=True)
-    sp, wall_sp = timed_pool(_scipy_one, states[idx_scipy], {
-        "values": dict(scene.values), "method": args.scipy_method, "catalogue": catalogue,
-        "tol": tol}, _SCIPY)
+    sp, wall_sp = timed_pool(functools.partial(
+        scipy_label, values=dict(scene.values), method=args.scipy_method,
+        catalogue=catalogue, tol=tol), states[idx_scipy])
     print(f"    wall {wall_sp:.1f} s ({len(idx_scipy) / wall_sp:.2f} ICs/s)")
 
     rows = []
@@ -565,11 +299,9 @@ def main(argv=None) -> int:
     if not args.skip_profile:
         print(f"\n[profile] softimpact defaults, one process, {args.profile_side ** 2} ICs ...",
               flush=True)
-        text, lines = profile_default(args.profile_side, tmp)
-        floor = rhs_floor()
-        lines.append("  " + floor)
-        text += "\n  " + floor
-        print(text)
+        lines = phases(args.profile_side, tmp)
+        lines.append("  " + rhs_floor())
+        print("\n".join(lines))
         extra += ["", "## Where softimpact's default run spends its time", "", "```",
                   *lines, "```"]
 

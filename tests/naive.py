@@ -174,8 +174,9 @@ class EventSolution:
 def solve_with_events(rhs_per_mode: Callable, y0: Sequence[float], t_span: tuple[float, float],
                       switches: Sequence[Callable], t_eval: Sequence[float] | None = None,
                       rtol: float = 1e-12, atol: float = 1e-12,
-                      max_events: int = 100_000, **solver_options) -> EventSolution:
-    """Integrate a switched system with DOP853, restarting at every crossing.
+                      max_events: int = 100_000, method: str = "DOP853",
+                      **solver_options) -> EventSolution:
+    """Integrate a switched system with DOP853 (or ``method``), restarting at every crossing.
 
     ``rhs_per_mode(t, y, mode)``; ``switches[i](t, y)`` = g_i; bit i of the initial mode is
     ``g_i(t0, y0) >= 0``. Each event watches only the crossing *out of* the current side
@@ -205,7 +206,7 @@ def solve_with_events(rhs_per_mode: Callable, y0: Sequence[float], t_span: tuple
             events.append(ev)
         m = mode
         todo = (t_eval >= t) & (t_eval <= t1)
-        sol = solve_ivp(lambda tt, yy, m=m: rhs_per_mode(tt, yy, m), (t, t1), y, method="DOP853",
+        sol = solve_ivp(lambda tt, yy, m=m: rhs_per_mode(tt, yy, m), (t, t1), y, method=method,
                         rtol=rtol, atol=atol, events=events, dense_output=True,
                         **solver_options)
         if sol.status < 0:

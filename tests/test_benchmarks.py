@@ -56,3 +56,46 @@ def test_reference_cache_key_follows_its_settings(bench):
     assert key != bench.reference_key(bench.scene_at(12), names, ref)
     assert key != bench.reference_key(scene, names, replace(ref, rtol=1e-10))
     assert key != bench.reference_key(scene, names + ("L1^2 R1-0^2",), ref)
+
+
+@pytest.fixture(scope="module")
+def contestants():
+    sys.path.insert(0, str(BENCHMARKS))
+    try:
+        yield (importlib.import_module("scipy_contestant"),
+               importlib.import_module("study_method"),
+               importlib.import_module("where_time_goes"))
+    finally:
+        sys.path.remove(str(BENCHMARKS))
+
+
+def test_contestants_name_a_start_on_an_orbit_as_the_catalogue_does(contestants, tmp_path):
+    """The scipy loop and the study's method (the basin benchmark's contestants 2 and 3)
+    must name a start on a known orbit with that orbit's name, or the agreement column
+    measures the contestants' bookkeeping, not their integration."""
+    scipy_contestant, study_method, _ = contestants
+    from softimpact_cli.sweep.runner import prepare_catalogues
+
+    scene = __import__("_common").scene_at(2)
+    catalogues, _ = prepare_catalogues(scene)
+    catalogue = catalogues[0.0]
+    combination = catalogue.combinations[-1]
+    start = combination.orbit[0]  # a joint section point of the orbit, at t = 0 mod T
+    tol = scene.analysis.label_tol
+    got = scipy_contestant.scipy_label(start, dict(scene.values), "DOP853", catalogue, tol,
+                                       transient=5, record=12)
+    assert got == combination.name
+    assert study_method.StudyMethod.of(scene, catalogue).label(start) == combination.name
+
+
+def test_stage_clock_times_the_catalogue_of_a_sweep(contestants, tmp_path):
+    import time
+
+    from softimpact_cli.sweep.runner import run_sweep
+
+    _, _, where = contestants
+    clock = where.StageClock()
+    t = time.perf_counter()
+    run_sweep(__import__("_common").scene_at(2), tmp_path / "s.h5", workers=1, echo=clock)
+    total = time.perf_counter() - t
+    assert 0.0 < clock.catalogue_s() < total
