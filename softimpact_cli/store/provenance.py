@@ -18,6 +18,8 @@ from .. import __version__
 def command_line() -> str:
     """This process's command line as a user would type it (``softimpact sweep ...``)."""
     argv0 = sys.argv[0] if sys.argv and sys.argv[0] else "python"
+    if argv0 == "-c":  # python -c '...' (also how pytest-xdist starts its workers)
+        return shlex.join(["python", "-c", *sys.argv[1:]])
     program = os.path.basename(argv0)
     if program == "__main__.py":  # python -m PACKAGE
         program = os.path.basename(os.path.dirname(argv0))
