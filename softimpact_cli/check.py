@@ -15,7 +15,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .config import SWEEP_KINDS, IntegratorSettings, Scene
+from .config import IntegratorSettings, Scene
 
 
 def tightened(s: IntegratorSettings) -> IntegratorSettings:
@@ -32,17 +32,16 @@ def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> 
     scene's settings (so that what depends on the order of a run, recurrence cells, is
     checked as it ran) and its wall time per trajectory for their cost.
     """
-    kind = scene.analysis.kind
-    if kind in SWEEP_KINDS:
-        return _check_sweep(scene, sample, seed, result)
-    if kind == "dcrit":
-        return _check_dcrit(scene, sample, seed)
-    if kind == "bifurcation":
-        return _check_bifurcation(scene)
-    raise ValueError(f"check covers sweeps, dcrit and bifurcation scenes, not {kind!r}")
+    from .kinds import ANALYSIS_KINDS, KINDS
+
+    kind = KINDS[scene.analysis.kind]
+    if kind.check is None:
+        covered = ", ".join(k for k in ANALYSIS_KINDS if KINDS[k].check is not None)
+        raise ValueError(f"check covers the kinds {covered}, not {kind.name!r}")
+    return kind.check(scene, sample, seed, result)
 
 
-def _check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
+def check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
     from .labels import name_of
     from .sweep.chunks import run_chunk
     from .sweep.runner import prepare_catalogues, sweep_context
@@ -77,9 +76,9 @@ def _check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
             "wall_ratio": walls["tight"] / max(walls["scene"], 1e-12)}
 
 
-def _check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
+def check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
     from .analysis import critical_distance as cd
-    from .run import scene_catalogue
+    from .analysis.catalogue import scene_catalogue
 
     cat = scene_catalogue(scene)
     rng = np.random.default_rng(seed)
@@ -97,8 +96,8 @@ def _check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
             "wall_ratio": out["tight"][1] / max(out["scene"][1], 1e-12)}
 
 
-def _check_bifurcation(scene: Scene) -> dict:
-    from .run import bifurcation_result
+def check_bifurcation(scene: Scene) -> dict:
+    from .kinds.bifurcation import run as bifurcation_result
 
     start = time.perf_counter()
     a = bifurcation_result(scene)

@@ -189,12 +189,9 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
       softimpact sweep configs/demo_basins.toml -o results/demo.h5
       softimpact sweep configs/fig04_duffing_catalogue.toml --quick
     """
-    from .config import SWEEP_KINDS
     from .config import quick as quick_scene
-    from .run import run_scene
-    from .store import write_result
-    from .store.lock import output_lock
-    from .store.provenance import command_line
+    from .kinds import SWEEP_KINDS
+    from .kinds import get as kind_of
 
     sc = load_scene(scene)
     if quick:
@@ -216,7 +213,7 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     _check_rk4_step(sc, strict)
     from .warmup import announce_compilation
     announce_compilation(sc)
-    if sc.analysis.kind in SWEEP_KINDS:
+    if kind_of(sc.analysis.kind).sweep:
         from .interrupt import modified, sweep_kept
         from .sweep import run_sweep
 
@@ -233,49 +230,36 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
             _store_check(sc, out, check_n)
         _warn_outcomes(ds, sc, strict)
         return
-    if sc.analysis.kind == "design":
-        if resume:
-            raise ConfigError(f"{scene}: --resume is for sweeps; a design reruns whole")
-        _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
-        return
     if resume:
-        raise ConfigError(f"{scene}: --resume is for sweeps (kind basins or stability)")
-    unit = {"catalogue": "initial conditions", "dcrit": "phases", "bifurcation": "branches"}
+        raise ConfigError(f"{scene}: --resume is for sweeps (kinds {', '.join(SWEEP_KINDS)}); "
+                          f"a {sc.analysis.kind} reruns whole")
+    _warn_outcomes(_run_whole(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
+
+
+def _run_whole(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool):
+    """Run a scene that is not a sweep (every kind but basins, stability, map), write its
+    result, print what its kind reports and the outcome line; return the dataset."""
+    from .kinds import get as kind_of
+    from .run import run_scene
+    from .store import write_result
+    from .store.lock import output_lock
+    from .store.provenance import command_line
+
+    kind = kind_of(sc.analysis.kind)
     # held for the whole run: a second run on the same output is refused at once, not
     # after it has computed everything
     with output_lock(out, command_line()):
         if out.exists() and not overwrite:
             raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
         ds = run_scene(sc, progress=None if quiet else functools.partial(
-            _progress_bar, unit=unit.get(sc.analysis.kind, "steps")))
+            _progress_bar, unit=kind.progress_unit), workers=workers, scheduler=scheduler,
+            echo=(lambda s: None) if quiet else (lambda s: click.echo(s, err=True)))
         write_result(ds, out)
-    if ds.attrs.get("analysis") == "catalogue":
-        from .info import format_catalogue
-
-        click.echo(format_catalogue(ds))
+    if kind.report is not None:
+        click.echo(kind.report(ds))
     click.echo(f"{sc.analysis.kind}: {ds.attrs.get('outcome', 'done')}"
                + (f", period {ds.attrs['period']}" if ds.attrs.get("period") else "")
                + f" ({ds.attrs['wall_s']:.2f} s) -> {out}")
-    _warn_outcomes(ds, sc, strict)
-
-
-def _run_design(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool):
-    """Run a design scene, write its result (shared by ``design`` and ``sweep``), return it."""
-    from .info import format_design
-    from .store import write_result
-    from .store.lock import output_lock
-    from .store.provenance import command_line
-    from .sweep.design import run_design
-
-    with output_lock(out, command_line()):
-        if out.exists() and not overwrite:
-            raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
-        ds = run_design(sc, workers=workers, scheduler=scheduler,
-                        echo=(lambda s: None) if quiet else (lambda s: click.echo(s, err=True)),
-                        progress=None if quiet else _progress_bar)
-        write_result(ds, out)
-    click.echo(format_design(ds))
-    click.echo(f"design: {ds.attrs['wall_s']:.1f} s -> {out}")
     return ds
 
 
@@ -331,7 +315,7 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
         return
     from .warmup import announce_compilation
     announce_compilation(sc)
-    _warn_outcomes(_run_design(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
+    _warn_outcomes(_run_whole(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
 
 
 def _store_check(scene, out: Path, sample: int) -> None:

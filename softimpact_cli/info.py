@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .kinds import KINDS
+
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "t0_mode",
     "analysis", "model", "bodies", "parameters", "outcome", "status_message", "period",
@@ -38,8 +40,6 @@ def describe(ds) -> dict:
     if "orbit" in ds:
         out["orbit"] = _plain(ds["orbit"].values)
         out["variables"] = [str(v) for v in ds["variable"].values]
-    if ds.attrs.get("analysis") == "catalogue":
-        out.update(catalogue_summary(ds))
     if "destroyed_at" in ds:
         out["branches"] = {
             str(name): {"destroyed_at": _plain(float(ds["destroyed_at"].values[i])),
@@ -49,10 +49,9 @@ def describe(ds) -> dict:
             for i, name in enumerate(ds["branch_name"].values)}
     if "d_crit" in ds:
         out["d_crit"] = dcrit_summary(ds)
-    if ds.attrs.get("analysis") in ("basins", "stability", "map"):
-        out.update(sweep_summary(ds))
-    if ds.attrs.get("analysis") == "design":
-        out.update(design_summary(ds))
+    kind = KINDS.get(str(ds.attrs.get("analysis")))
+    if kind is not None and kind.summary is not None:
+        out.update(kind.summary(ds))
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}
 

@@ -120,6 +120,16 @@ def require_attractors(catalogue: Catalogue, kind: str, source: str) -> None:
                       f"unresolved); {kind} needs at least one")
 
 
+def scene_catalogue(scene) -> Catalogue:
+    """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...);
+    one line (ConfigError) and nothing further computed when it finds no attractor."""
+    c = scene.catalogue
+    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    require_attractors(cat, scene.analysis.kind, str(scene.source))
+    return cat
+
+
 def body_problem(system: System, values: dict, integrator: IntegratorSettings) -> Problem:
     """The one-body problem with the body parameters of ``values``."""
     body = get_system(system.model, 1)

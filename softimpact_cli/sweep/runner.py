@@ -21,6 +21,7 @@ from ..analysis.catalogue import (
     sample_states,
 )
 from ..config import ConfigError, Scene
+from ..kinds import get as kind_of
 from ..store import open_result
 from ..store.lock import output_lock
 from ..store.provenance import command_line, history_line, provenance
@@ -284,10 +285,9 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
                           "--resume")
 
     ds = sweep_dataset(scene, arrays, orbits, names, t0_per_sample)
-    if scene.analysis.kind == "map":
-        from ..analysis.maps import add_map_counts
-
-        ds = add_map_counts(ds, scene.system, dict(scene.values), list(first.attractors))
+    after = kind_of(scene.analysis.kind).after_sweep  # e.g. the map's solution counts
+    if after is not None:
+        ds = after(ds, scene, first)
     catalogue_vars = catalogue_dataset(first, scene.system, scene.integrator)
     ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
     # wall time and start over every session that contributed parts (a session counts

@@ -1,0 +1,167 @@
+"""Analysis kinds: one home each, one registry.
+
+Each kind (``[analysis] kind = ...``) is a module of this package declaring an
+:class:`AnalysisKind`: its ``[analysis]`` keys and the other sections it reads (the config
+side), how ``--quick`` shrinks it, how it runs (a function returning an
+``xarray.Dataset``; sweep kinds run through the chunked, resumable ``sweep.runner``), the
+plan ``--dry-run`` prints, its ``check`` and its ``info`` summary. The config reader, the
+CLI, ``run``, ``check``, ``info`` and the sweep runner look a kind up here; none of them
+branches on a kind's name.
+
+Adding a kind: a module here with its settings dataclass and its ``KINDS`` tuple, its
+line in :data:`MODULES`, and a figure function in ``plot/`` (plus its ``plot`` command).
+The functions a kind names from later layers (analysis, sweep, store, plot) are imported
+when called, so that reading a scene imports no analysis code.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..config.reader import ConfigError, Section
+from ..systems import System
+
+# the modules declaring kinds, in the order `--help` lists them
+MODULES = ("trajectory", "catalogue", "sweeps", "dcrit", "bifurcation", "design")
+
+
+@dataclass(frozen=True)
+class SceneContext:
+    """What reading a kind's sections needs from the rest of the scene.
+
+    check_axis(axis, value) -> what is wrong with ``value`` on a grid/design axis, or None.
+    """
+
+    source: str
+    doc: Mapping[str, Any]
+    system: System
+    values: Mapping[str, Any]
+    period: float  # forcing period 2 pi / w
+    check_axis: Callable[[str, float], str | None]
+
+    def refuse(self, *sections: str) -> None:
+        """One line when the scene has a section this kind does not read."""
+        for name in sections:
+            if name in self.doc:
+                raise ConfigError(f"{self.source}: [{name}]: not used by kind "
+                                  f"{self.doc.get('analysis', {}).get('kind', 'trajectory')!r}")
+
+
+@dataclass(frozen=True)
+class Sections:
+    """The sections a kind read besides [analysis] (None where it reads none)."""
+
+    analysis: Any
+    grid: Any = None
+    initial_conditions: Any = None
+    catalogue: Any = None
+
+
+@dataclass(frozen=True)
+class AnalysisKind:
+    """One analysis kind.
+
+    read(sec, ctx) -> settings : the [analysis] keys (``sec.finish()`` follows)
+    sections(settings, ctx) -> Sections : [grid], [initial_conditions], [catalogue]
+    shrink(settings, grid) -> (settings, grid, note or "") : what ``--quick`` reduces
+        beyond planes and samples (the config's ``quick`` does those for every kind)
+    run(scene, progress, **options) -> Dataset : None for sweep kinds (``sweep.runner``)
+    plan(scene, workers, chunk_size) -> str : the first line of ``--dry-run``
+    check(scene, sample, seed, result) -> report : ``softimpact check`` (None: no check)
+    summary(ds) -> dict : the kind's part of ``info``
+    after_sweep(ds, scene, catalogue) -> Dataset : a sweep kind's extra variables
+    report(ds) -> str : what the CLI prints after a run besides the one-line outcome
+    """
+
+    name: str
+    description: str
+    read: Callable[[Section, SceneContext], Any]
+    plan: Callable[..., str]
+    sections: Callable[[Any, SceneContext], Sections] | None = None
+    shrink: Callable[[Any, Any], tuple[Any, Any, str]] | None = None
+    run: Callable[..., Any] | None = None
+    check: Callable[..., dict] | None = None
+    summary: Callable[[Any], dict] | None = None
+    after_sweep: Callable[..., Any] | None = None
+    report: Callable[[Any], str] | None = None
+    progress_unit: str = "steps"
+    options: tuple[str, ...] = field(default=())  # run options it takes (workers, ...)
+
+    @property
+    def sweep(self) -> bool:
+        """Chunked, resumable: every initial condition at every grid point."""
+        return self.run is None
+
+    def read_sections(self, settings: Any, ctx: SceneContext) -> Sections:
+        if self.sections is not None:
+            return self.sections(settings, ctx)
+        for name in ("grid", "initial_conditions", "catalogue"):
+            if name in ctx.doc:
+                raise ConfigError(f"{ctx.source}: [{name}]: only for the analyses "
+                                  f"{', '.join(SWEEP_KINDS)}; kind is {self.name!r}")
+        return Sections(settings)
+
+
+# ---------------------------------------------------------------- readers kinds share
+
+
+def forcing_period(values: Mapping[str, Any]) -> float:
+    """2 pi / w: the forcing period of a parameter point."""
+    return 2.0 * math.pi / float(values["w"])
+
+
+def read_t0(sec: Section, period: float) -> float:
+    """[analysis] t0: a time in T-multiples, at most MAX_T0_PERIODS periods from 0."""
+    from ..config.limits import t0_problem
+
+    t0 = sec.multiple("t0", 0.0, "T", period)
+    problem = t0_problem(t0, period)
+    if problem:
+        raise sec.fail("t0", f"{problem}, got {t0!r}")
+    return t0
+
+
+def read_state(sec: Section, key: str, system: System) -> tuple[float, ...]:
+    """A state vector: ``system.dim`` finite numbers."""
+    value = sec.raw(key)
+    names = ", ".join(system.state_names)
+    if not isinstance(value, list) or len(value) != system.dim:
+        raise sec.fail(key, f"must be a list of {system.dim} numbers ({names}), got {value!r}")
+    out = []
+    for v in value:
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+            raise sec.fail(key, f"must be a list of {system.dim} finite numbers ({names}), "
+                                f"got {value!r}")
+        out.append(float(v))
+    return tuple(out)
+
+
+# ---------------------------------------------------------------- the registry
+
+
+def _load() -> dict[str, AnalysisKind]:
+    kinds: dict[str, AnalysisKind] = {}
+    for module in MODULES:
+        for kind in importlib.import_module(f"{__name__}.{module}").KINDS:
+            kinds[kind.name] = kind
+    return kinds
+
+
+KINDS: dict[str, AnalysisKind] = _load()
+ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation",
+                  "map", "design")
+assert set(ANALYSIS_KINDS) == set(KINDS), "every module's kinds are listed"
+SWEEP_KINDS = tuple(name for name in ANALYSIS_KINDS if KINDS[name].sweep)
+
+
+def get(name: str) -> AnalysisKind:
+    """The kind called ``name`` (a result's ``analysis`` attribute or a scene's kind)."""
+    try:
+        return KINDS[name]
+    except KeyError:
+        raise ConfigError(f"analysis kind {name!r}: unknown; one of "
+                          f"{', '.join(ANALYSIS_KINDS)}") from None

@@ -1,0 +1,112 @@
+"""[analysis] kind = "bifurcation": each solution followed along d, destruction located."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..config.reader import positive
+from ..config.sweep import read_catalogue
+from . import AnalysisKind, Sections, forcing_period
+
+QUICK_STEPS = 50  # --quick: largest number of d steps of a bifurcation diagram
+MAX_STEPS = 100_000
+
+
+@dataclass(frozen=True)
+class BifurcationAnalysis:
+    """[analysis] kind = "bifurcation": follow solutions as d moves from ``start`` to
+    ``stop`` by ``step`` (each step from the previous end state); ``branches`` names the
+    solutions to follow (default: every combination of the catalogue)."""
+
+    kind: str
+    start: float
+    stop: float
+    step: float
+    branches: tuple[str, ...] = ()
+
+
+def read(sec, ctx) -> BifurcationAnalysis:
+    from ..labels import parse_label
+
+    if ctx.system.bodies != 2:
+        raise sec.fail("kind", "bifurcation along d needs a pair ([system] bodies = 2)")
+    start = sec.number("start", None)
+    stop = sec.number("stop", None)
+    step = sec.number("step", None, positive)
+    for key, v in (("start", start), ("stop", stop)):
+        problem = ctx.check_axis("d", v)
+        if problem:
+            raise sec.fail(key, f"{problem} (a distance d), got {v!r}")
+    if start == stop:
+        raise sec.fail("stop", "must differ from start")
+    if abs(stop - start) / step > MAX_STEPS:
+        raise sec.fail("step", f"{abs(stop - start) / step:.0f} steps; at most {MAX_STEPS}")
+    raw = sec.raw("branches", [])
+    if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
+        raise sec.fail("branches", f"must be a list of names like 'L1^1 R1-0^2', got {raw!r}")
+    for b in raw:
+        try:
+            if parse_label(b).kind != "pair":
+                raise ValueError(f"{b!r} is not a non-impacting pair solution")
+        except ValueError as exc:
+            raise sec.fail("branches", str(exc)) from None
+    return BifurcationAnalysis("bifurcation", start, stop, step, tuple(raw))
+
+
+def sections(analysis, ctx) -> Sections:
+    ctx.refuse("grid", "initial_conditions")
+    return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
+                                                       ctx.system.extra["catalogue_box"]))
+
+
+def shrink(analysis, grid, axis: int):
+    span = abs(analysis.stop - analysis.start)
+    return (replace(analysis, step=max(analysis.step, span / QUICK_STEPS)), grid,
+            f", at most {QUICK_STEPS} steps in d")
+
+
+def run(scene, progress=None, **_):
+    """Follow the scene's branches along d (figure 7), with the catalogue attached."""
+    import xarray as xr
+
+    from ..analysis.bifurcation import bifurcation_dataset, d_values
+    from ..analysis.catalogue import catalogue_dataset, scene_catalogue
+    from ..config.reader import ConfigError
+
+    a = scene.analysis
+    values = dict(scene.values)
+    cat = scene_catalogue(scene)
+    branches = list(a.branches) or list(cat.names)
+    for b in branches:
+        if b not in cat.names:
+            raise ConfigError(f"{scene.source}: [analysis] branches: {b!r} is not in the "
+                              f"catalogue ({', '.join(cat.names)})")
+    tick = progress(len(branches)) if progress else None
+    ds = bifurcation_dataset(scene.system, values, scene.integrator, cat, branches,
+                             d_values(a.start, a.stop, a.step), tick)
+    ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
+                  combine_attrs="override", compat="override")
+    ds.attrs["analysis"] = "bifurcation"
+    ds.attrs["forcing_period"] = forcing_period(values)
+    return ds
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    from ..analysis.bifurcation import d_values
+
+    a = scene.analysis
+    branches = f"{len(a.branches)} branches" if a.branches else \
+        "every combination of the catalogue"
+    return (f"bifurcation: {branches} x {d_values(a.start, a.stop, a.step).size} steps of d "
+            f"from {a.start:g} to {a.stop:g} by {a.step:g}")
+
+
+def check(scene, sample, seed, result=None) -> dict:
+    from ..check import check_bifurcation
+
+    return check_bifurcation(scene)
+
+
+KINDS = (AnalysisKind("bifurcation", "each solution followed along d, destruction points "
+                      "located", read, plan, sections=sections, shrink=shrink, run=run,
+                      check=check, progress_unit="branches"),)

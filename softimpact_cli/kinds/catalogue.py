@@ -1,0 +1,77 @@
+"""[analysis] kind = "catalogue": the attractors of one body and the pair's combinations."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from ..config.limits import MAX_SEED
+from ..config.reader import positive
+from ..config.sweep import read_box
+from . import AnalysisKind, read_t0
+
+
+@dataclass(frozen=True)
+class CatalogueAnalysis:
+    """[analysis] kind = "catalogue": the one-body attractors (and a pair's combinations).
+
+    Initial conditions: a ``grid`` x ``grid`` lattice plus ``random`` uniform samples over
+    ``box`` (x and v ranges), imposed at ``t0``.
+    """
+
+    kind: str
+    box: Mapping[str, tuple[float, float]]
+    grid: int = 16
+    random: int = 200
+    seed: int = 0
+    t0: float = 0.0
+    match_tol: float = 1e-3
+
+
+def read(sec, ctx) -> CatalogueAnalysis:
+    analysis = CatalogueAnalysis(
+        kind="catalogue",
+        box=read_box(sec, "box", ("x", "v"), ctx.system.extra["catalogue_box"]),
+        grid=sec.integer("grid", 16, 0, 2000),
+        random=sec.integer("random", 200, 0, 10_000_000),
+        seed=sec.integer("seed", 0, 0, MAX_SEED),
+        t0=read_t0(sec, ctx.period),
+        match_tol=sec.number("match_tol", 1e-3, positive),
+    )
+    if analysis.grid == 0 and analysis.random == 0:
+        raise sec.fail("grid", "grid and random are both 0: no initial conditions")
+    return analysis
+
+
+def run(scene, progress=None, **_):
+    from ..analysis.catalogue import build_catalogue, catalogue_dataset, sample_states
+
+    a = scene.analysis
+    states = sample_states(a.box, a.grid, a.random, a.seed)
+    tick = progress(len(states)) if progress else None
+    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator, states, a.t0,
+                          a.match_tol, tick)
+    return catalogue_dataset(cat, scene.system, scene.integrator)
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    a = scene.analysis
+    return (f"catalogue: {a.grid} x {a.grid} grid + {a.random} random initial conditions of "
+            f"one body at t0 = {a.t0:g}")
+
+
+def summary(ds) -> dict:
+    from ..info import catalogue_summary
+
+    return catalogue_summary(ds)
+
+
+def report(ds) -> str:
+    from ..info import format_catalogue
+
+    return format_catalogue(ds)
+
+
+KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
+                      read, plan, run=run, summary=summary, report=report,
+                      progress_unit="initial conditions"),)

@@ -1,0 +1,108 @@
+"""[analysis] kind = "dcrit": the critical distance d_crit(phi) of every combination."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..config.reader import ConfigError
+from ..config.sweep import read_catalogue, read_grid
+from ..expressions import parse_multiple
+from . import AnalysisKind, Sections, forcing_period
+
+QUICK_PHIS = 64  # --quick: largest number of phases of a critical-distance curve
+DEFAULT_PHIS = 256  # phases over [0, 2 pi) without [grid] phi
+
+
+@dataclass(frozen=True)
+class CriticalDistanceAnalysis:
+    """[analysis] kind = "dcrit": d_crit(phi) of every combination, at the phi values of
+    [grid] (default 256 points over [0, 2 pi)), plus x1 - x2 traces at ``traces``."""
+
+    kind: str
+    phis: tuple[float, ...]
+    traces: tuple[float, ...] = ()
+    samples: int = 512
+
+
+def read(sec, ctx) -> CriticalDistanceAnalysis:
+    if ctx.system.bodies != 2:
+        raise sec.fail("kind", "critical distances need a pair ([system] bodies = 2)")
+    raw = sec.raw("traces", [])
+    if not isinstance(raw, list):
+        raise sec.fail("traces", f"must be a list of phases, got {raw!r}")
+    traces = []
+    for v in raw:
+        try:
+            traces.append(parse_multiple(v, "pi", math.pi))
+        except ValueError as exc:
+            raise sec.fail("traces", str(exc)) from None
+    return CriticalDistanceAnalysis(kind="dcrit", phis=(), traces=tuple(traces),
+                                    samples=sec.integer("samples", 512, 16, 1_000_000))
+
+
+def sections(analysis, ctx) -> Sections:
+    grid_doc = ctx.doc.get("grid", {})
+    if set(grid_doc) - {"phi"}:
+        raise ConfigError(f"{ctx.source}: [grid] {sorted(set(grid_doc) - {'phi'})[0]}: "
+                          "critical distances sweep phi only")
+    grid = None
+    if "phi" in grid_doc:
+        grid = read_grid(ctx.source, ctx.doc, ctx.values, ctx.system.bodies, ctx.period,
+                         ctx.check_axis)
+        phis = grid.axes["phi"]
+    else:
+        phis = tuple(np.linspace(0.0, 2 * np.pi, DEFAULT_PHIS, endpoint=False).tolist())
+    catalogue = read_catalogue(ctx.source, ctx.doc, ctx.system.extra["catalogue_box"])
+    return Sections(replace(analysis, phis=phis), grid, None, catalogue)
+
+
+def shrink(analysis, grid, axis: int):
+    from ..config.scene import thin
+
+    return (replace(analysis, phis=thin(analysis.phis, QUICK_PHIS)), grid,
+            f", at most {QUICK_PHIS} phases")
+
+
+def run(scene, progress=None, **_):
+    """d_crit(phi) of every combination, the traces of fig. 5 (b-d), and the catalogue."""
+    import xarray as xr
+
+    from ..analysis.catalogue import catalogue_dataset, scene_catalogue
+    from ..analysis.critical_distance import critical_distances, traces
+
+    a = scene.analysis
+    values = dict(scene.values)
+    cat = scene_catalogue(scene)
+    tick = progress(len(a.phis)) if progress else None
+    ds = critical_distances(scene.system, values, list(cat.attractors), np.array(a.phis),
+                            a.samples, tick)
+    if a.traces:
+        ds = xr.merge([ds, traces(scene.system, values, cat, a.traces, a.samples)],
+                      combine_attrs="override")
+    ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)
+                   .drop_vars(["combination_orbit"]).drop_dims("joint_point")],
+                  combine_attrs="override", compat="override")
+    ds.attrs["analysis"] = "dcrit"
+    ds.attrs["forcing_period"] = forcing_period(values)
+    return ds
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    a = scene.analysis
+    return (f"dcrit: d_crit of every combination at {len(a.phis)} phases"
+            + (f", x1 - x2 traces at {len(a.traces)}" if a.traces else "")
+            + f", {a.samples} samples per joint orbit")
+
+
+def check(scene, sample, seed, result=None) -> dict:
+    from ..check import check_dcrit
+
+    return check_dcrit(scene, sample, seed)
+
+
+KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
+                      plan, sections=sections, shrink=shrink, run=run, check=check,
+                      progress_unit="phases"),)

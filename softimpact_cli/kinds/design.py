@@ -1,0 +1,82 @@
+"""[analysis] kind = "design": (d, phi, k_c, c_c) where only the target solution survives.
+
+The [analysis] keys are read by ``config.design`` (shared with ``design --target``); the
+method is ``analysis.design``, run through the sweep executors by ``sweep.design``.
+"""
+
+from __future__ import annotations
+
+from ..config.limits import MAX_TRAJECTORIES, design_trajectories
+from ..config.reader import ConfigError
+from ..config.sweep import read_catalogue, read_initial_conditions
+from . import AnalysisKind, Sections
+
+
+def read(sec, ctx):
+    from ..config.design import read_design
+
+    if ctx.system.bodies != 2:
+        raise sec.fail("kind", "a design needs a pair ([system] bodies = 2)")
+    return read_design(sec, ctx.values, ctx.check_axis)
+
+
+def sections(analysis, ctx) -> Sections:
+    source, doc = ctx.source, ctx.doc
+    if "grid" in doc:
+        raise ConfigError(f"{source}: [grid]: not used by kind 'design' (its search box "
+                          "is [analysis] bounds)")
+    if "initial_conditions" not in doc:
+        raise ConfigError(f"{source}: [initial_conditions]: is required for a design "
+                          "(kind = \"random\", box, n, seed: the basin-stability samples)")
+    ic_kind = doc["initial_conditions"].get("kind", "plane")
+    if ic_kind != "random":
+        raise ConfigError(f"{source}: [initial_conditions] kind: a design's basin "
+                          f"stability needs kind = \"random\", got {ic_kind!r}")
+    initial = read_initial_conditions(source, doc, ctx.system.state_names, ctx.period, False)
+    for key in ("screen_n", "robust_n"):
+        if (getattr(analysis, key) or 0) > initial.count:
+            raise ConfigError(f"{source}: [analysis] {key}: must be <= [initial_conditions]"
+                              f" n = {initial.count}, got {getattr(analysis, key)}")
+    total = design_trajectories(analysis, initial.count)
+    if total > MAX_TRAJECTORIES:
+        raise ConfigError(f"{source}: [analysis]/[initial_conditions]: the design runs up "
+                          f"to {total} trajectories (candidates x screen_n + refine x n + "
+                          f"perturbed points x robust_n + n); at most {MAX_TRAJECTORIES}")
+    catalogue = read_catalogue(source, doc, ctx.system.extra["catalogue_box"])
+    return Sections(analysis, None, initial, catalogue)
+
+
+def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
+    from ..sweep.design import run_design
+
+    options = {} if echo is None else {"echo": echo}
+    return run_design(scene, workers=workers, scheduler=scheduler, progress=progress,
+                      **options)
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    a = scene.analysis
+    free = 4  # d, phi, k_c and c_c are each moved by +-perturbation_steps
+    return (f"design: target {a.target or '(give --target)'}; {a.candidates} candidates "
+            f"screened on {a.screen_n} samples, the best {a.refine} rerun on "
+            f"{scene.initial_conditions.count}; {2 * a.perturbation_steps * free} perturbed "
+            f"points on {a.robust_n or scene.initial_conditions.count} samples; d_crit over "
+            f"{a.phi_points} phases")
+
+
+def summary(ds) -> dict:
+    from ..info import design_summary
+
+    return design_summary(ds)
+
+
+def report(ds) -> str:
+    from ..info import format_design
+
+    return format_design(ds)
+
+
+KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target survives (see "
+                      "design)", read, plan, sections=sections, run=run, summary=summary,
+                      report=report, progress_unit="trajectories",
+                      options=("workers", "scheduler", "echo")),)

@@ -1,0 +1,95 @@
+"""The sweep kinds: every initial condition of [initial_conditions] at every point of
+[grid], classified and labelled; run chunked and resumable by ``sweep.runner``.
+
+basins : starts on a plane (or a list); stability : random samples of the full state
+(basin stability); map : coexisting solutions over two parameters, predicted from the
+critical distances and found by sampling.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..config.limits import MAX_TRAJECTORIES
+from ..config.reader import ConfigError, positive
+from ..config.sweep import read_catalogue, read_grid, read_initial_conditions
+from . import AnalysisKind, Sections
+
+
+@dataclass(frozen=True)
+class SweepAnalysis:
+    """[analysis] kind = "basins" | "stability" | "map": every initial condition of
+    [initial_conditions] at every point of [grid], classified and labelled."""
+
+    kind: str
+    label_tol: float = 1e-3
+
+
+def _reader(kind: str):
+    def read(sec, ctx) -> SweepAnalysis:
+        return SweepAnalysis(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
+    return read
+
+
+def sections(analysis, ctx) -> Sections:
+    source, doc = ctx.source, ctx.doc
+    grid = read_grid(source, doc, ctx.values, ctx.system.bodies, ctx.period, ctx.check_axis)
+    initial = read_initial_conditions(source, doc, ctx.system.state_names, ctx.period,
+                                      "t0" in grid.swept)
+    total = grid.size * initial.count
+    if total > MAX_TRAJECTORIES:
+        raise ConfigError(f"{source}: [grid]/[initial_conditions]: {grid.size} grid points"
+                          f" x {initial.count} initial conditions = {total} trajectories; "
+                          f"at most {MAX_TRAJECTORIES} trajectories per sweep")
+    catalogue = read_catalogue(source, doc, ctx.system.extra["catalogue_box"])
+    return Sections(analysis, grid, initial, catalogue)
+
+
+def shrink(analysis, grid, axis: int):
+    """--quick: at most ``axis`` values per swept grid axis (endpoints kept; explicit
+    panels stay)."""
+    from ..config.scene import thin
+
+    if grid is not None and not grid.panels:
+        grid = replace(grid, axes={a: thin(v, axis) if a in grid.swept else v
+                                   for a, v in grid.axes.items()})
+    return analysis, grid, ""
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    import os
+
+    from ..sweep.plan import Plan, default_chunk_size
+
+    n_total = scene.grid.size * scene.initial_conditions.count
+    size = chunk_size or default_chunk_size(n_total, workers or os.cpu_count() or 1)
+    return f"{scene.analysis.kind}: " + Plan(scene, size).describe()
+
+
+def check(scene, sample, seed, result=None) -> dict:
+    from ..check import check_sweep
+
+    return check_sweep(scene, sample, seed, result)
+
+
+def summary(ds) -> dict:
+    from ..info import sweep_summary
+
+    return sweep_summary(ds)
+
+
+def map_counts(ds, scene, catalogue):
+    """The map's predicted and found numbers of coexisting solutions at each point."""
+    from ..analysis.maps import add_map_counts
+
+    return add_map_counts(ds, scene.system, dict(scene.values), list(catalogue.attractors))
+
+
+KINDS = tuple(
+    AnalysisKind(name, description, _reader(name), plan, sections=sections, shrink=shrink,
+                 check=check, summary=summary, after_sweep=after, progress_unit="trajectories")
+    for name, description, after in (
+        ("basins", "the label of every start on a plane, at every [grid] point", None),
+        ("stability", "basin stability: shares of random starts, 95% Wilson intervals", None),
+        ("map", "coexisting solutions over two parameters, predicted and found", map_counts),
+    ))
