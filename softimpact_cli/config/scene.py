@@ -158,7 +158,7 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
 
 def _read_analysis(sec: Section, ctx: SceneContext):
     """The [analysis] keys of the scene's kind (each kind reads its own)."""
-    kind = sec.choice("kind", "trajectory", ANALYSIS_KINDS)
+    kind = sec.choice("kind", "trajectory", tuple(KINDS))  # the registry, at call time
     analysis = KINDS[kind].read(sec, ctx)
     sec.finish()
     return analysis

@@ -151,10 +151,12 @@ def _load() -> dict[str, AnalysisKind]:
     return kinds
 
 
-KINDS: dict[str, AnalysisKind] = _load()
-ANALYSIS_KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation",
-                  "map", "design")
-assert set(ANALYSIS_KINDS) == set(KINDS), "every module's kinds are listed"
+_LOADED = _load()
+_ORDER = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
+          "design")  # the order messages and --help list them in; new kinds follow
+KINDS: dict[str, AnalysisKind] = {name: _LOADED[name] for name in _ORDER if name in _LOADED}
+KINDS.update({name: kind for name, kind in _LOADED.items() if name not in KINDS})
+ANALYSIS_KINDS = tuple(KINDS)
 SWEEP_KINDS = tuple(name for name in ANALYSIS_KINDS if KINDS[name].sweep)
 
 

@@ -1,0 +1,97 @@
+"""The analysis-kind registry: every kind has one home, the CLI, config, run, check and
+info dispatch through it, and a new kind is one module (here: one registry entry)."""
+
+import pytest
+import xarray as xr
+from click.testing import CliRunner
+
+from softimpact_cli.check import check_scene
+from softimpact_cli.cli import main
+from softimpact_cli.config import ConfigError, parse_scene
+from softimpact_cli.examples import example as example_scene
+from softimpact_cli.info import describe
+from softimpact_cli.kinds import ANALYSIS_KINDS, KINDS, SWEEP_KINDS, AnalysisKind, get
+from softimpact_cli.run import plan_text, run_scene
+
+
+def test_every_kind_has_a_home_and_sweeps_are_those_without_a_run():
+    assert set(ANALYSIS_KINDS) == {"trajectory", "catalogue", "basins", "stability", "dcrit",
+                                   "bifurcation", "map", "design"}
+    assert SWEEP_KINDS == ("basins", "stability", "map")
+    for name, kind in KINDS.items():
+        assert kind.name == name and kind.description and callable(kind.read)
+        assert kind.sweep == (kind.run is None)
+        assert kind.__class__ is AnalysisKind
+    with pytest.raises(ConfigError, match="analysis kind 'orbit': unknown; one of trajectory"):
+        get("orbit")
+
+
+@pytest.mark.parametrize("name", ANALYSIS_KINDS)
+def test_every_kind_reads_its_example_and_plans_it(name):
+    scene = parse_scene(example_scene(name), f"{name}.toml")
+    assert scene.analysis.kind == name
+    plan = plan_text(scene)
+    assert plan.splitlines()[0].startswith(f"{name}: ")
+    assert plan.splitlines()[-1].startswith("output: ")
+    # a catalogue section is read exactly by the kinds that need one
+    assert (scene.catalogue is not None) == (name in (*SWEEP_KINDS, "dcrit", "bifurcation",
+                                                      "design"))
+
+
+def test_a_kind_without_a_check_names_those_with_one():
+    scene = parse_scene(example_scene("trajectory"), "t.toml")
+    with pytest.raises(ValueError, match="check covers the kinds basins, stability, dcrit, "
+                                         "bifurcation, map, not 'trajectory'"):
+        check_scene(scene)
+
+
+def _toy_read(sec, ctx):
+    from dataclasses import make_dataclass
+
+    settings = make_dataclass("ToyAnalysis", [("kind", str), ("scale", float)], frozen=True)
+    return settings("toy", sec.number("scale", 1.0))
+
+
+def _toy_run(scene, progress=None, **_):
+    w = float(scene.values["w"])
+    return xr.Dataset({"omega": ((), scene.analysis.scale * w)},
+                      attrs={"analysis": "toy", "outcome": "done"})
+
+
+TOY = AnalysisKind("toy", "a kind added by one registry entry", _toy_read,
+                   lambda scene, workers=None, chunk_size=None: "toy: scale the frequency",
+                   run=_toy_run, summary=lambda ds: {"omega": float(ds["omega"])})
+
+
+def test_a_new_kind_is_one_registry_entry(monkeypatch, tmp_path):
+    """Registered, a kind is read, planned, run, written and described by the existing
+    code, with no other change."""
+    monkeypatch.setitem(KINDS, "toy", TOY)
+    text = ('[system]\nmodel = "duffing"\n[analysis]\nkind = "toy"\nscale = 2.0\n'
+            f'[output]\npath = "{tmp_path / "toy.h5"}"\n')
+    scene = parse_scene(text, "toy.toml")
+    assert plan_text(scene).startswith("toy: scale the frequency")
+    ds = run_scene(scene)
+    assert float(ds["omega"]) == pytest.approx(2.6) and ds.attrs["scene_sha256"]
+    assert describe(ds)["omega"] == pytest.approx(2.6)
+    (tmp_path / "toy.toml").write_text(text)
+    result = CliRunner().invoke(main, ["sweep", str(tmp_path / "toy.toml")])
+    assert result.exit_code == 0, result.output
+    assert result.output.startswith("toy: done (") and (tmp_path / "toy.h5").is_file()
+    with pytest.raises(ConfigError, match="scale: must be a number"):
+        parse_scene(text.replace("2.0", '"two"'), "toy.toml")
+
+
+def test_unregistered_kind_is_refused_with_the_registry_list():
+    text = '[system]\nmodel = "duffing"\n[analysis]\nkind = "toy"\n'
+    with pytest.raises(ConfigError, match=r"\[analysis\] kind: must be one of 'trajectory', "
+                                          r"'catalogue', 'basins'"):
+        parse_scene(text, "t.toml")
+
+
+def test_sweep_kinds_refuse_resume_for_the_others(tmp_path):
+    (tmp_path / "t.toml").write_text(example_scene("trajectory"))
+    result = CliRunner().invoke(main, ["sweep", str(tmp_path / "t.toml"), "--resume"])
+    assert result.exit_code == 2
+    assert "--resume is for sweeps (kinds basins, stability, map); a trajectory reruns " \
+           "whole" in result.output
