@@ -81,7 +81,7 @@ def compile_notice(scene=None) -> str | None:
     else:
         model, bodies = scene.system.model, scene.system.bodies
         method = scene.integrator.resolved_method
-        catalogue = scene.analysis.kind != "trajectory"
+        catalogue = scene.catalogue is not None or scene.analysis.kind == "catalogue"
     if not missing_kernels(model, bodies, method, catalogue):
         return None
     return NOTICE.format(minutes=COLD_MINUTES, folder=cache_folder())
