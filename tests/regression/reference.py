@@ -1,0 +1,116 @@
+"""Results of every example scene, stored from main before a refactor and compared after.
+
+``python -m tests.regression.reference write`` runs every scene of ``configs/`` (and
+``configs/figures/``) at ``--quick`` resolution, plus figure 6(d)'s plane at 60 x 60, and
+stores each result's data variables in ``tests/data/reference/<scene>.npz``;
+``test_reference.py`` reruns them and compares. Integer variables (labels, statuses,
+periods, counters) must be identical; floating-point ones equal to a relative 1e-9 (a
+different CPU may round differently in compiled code; on the machine that wrote the
+references, ``python -m tests.regression.reference compare`` reports bitwise equality).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+STORE = ROOT / "tests" / "data" / "reference"
+
+# (name, scene, extra CLI options)
+SCENES = tuple(
+    [(p.stem, p, ("--quick",)) for p in sorted((ROOT / "configs").glob("*.toml"))]
+    + [(p.stem, p, ("--quick",)) for p in sorted((ROOT / "configs" / "figures").glob("*.toml"))]
+    + [("fig06d_plane_60", ROOT / "configs" / "demo_basins.toml", ("--resolution", "60"))]
+)
+# attributes that change from run to run (times, paths, machine) are not results
+VOLATILE = ("wall", "time", "started", "finished", "host", "python", "command", "version",
+            "commit", "output", "executor", "workers", "chunk", "plan", "session", "resumed",
+            "cpu", "numba", "platform", "source", "scene_text", "scene_file", "duration")
+
+
+def run_scene(scene: Path, options: tuple[str, ...], out: Path):
+    """Run one scene through the CLI (in this process) and open its result."""
+    import xarray as xr
+    from click.testing import CliRunner
+
+    from softimpact_cli.cli import main
+
+    result = CliRunner().invoke(main, ["sweep", str(scene), "-o", str(out), "--overwrite",
+                                       "-q", "--workers", "2", *options])
+    if result.exit_code != 0:
+        raise RuntimeError(f"{scene.name}: exit {result.exit_code}: {result.output}")
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        return ds.load()
+
+
+def arrays_of(ds) -> dict[str, np.ndarray]:
+    """The result's data variables and coordinates as plain arrays."""
+    out = {}
+    for name, var in {**ds.coords, **ds.data_vars}.items():
+        values = np.asarray(var.values)
+        if values.dtype.kind == "O":
+            values = values.astype(str)
+        out[str(name)] = values
+    return out
+
+
+def digest(values: np.ndarray) -> str:
+    return hashlib.sha256(np.ascontiguousarray(values).tobytes()).hexdigest()[:16]
+
+
+def differences(stored: dict, now: dict, rtol: float = 1e-9) -> list[str]:
+    """What differs between two results' arrays (empty when they agree)."""
+    problems = []
+    for name in sorted(set(stored) | set(now)):
+        if name not in now or name not in stored:
+            problems.append(f"{name}: only in {'stored' if name in stored else 'new'} result")
+            continue
+        a, b = stored[name], now[name]
+        if a.shape != b.shape:
+            problems.append(f"{name}: shape {a.shape} -> {b.shape}")
+        elif a.dtype.kind in "fc":
+            if not np.allclose(a, b, rtol=rtol, atol=0.0, equal_nan=True):
+                bad = int(np.sum(~np.isclose(a, b, rtol=rtol, atol=0.0, equal_nan=True)))
+                problems.append(f"{name}: {bad} of {a.size} values differ beyond {rtol:g}")
+        elif not np.array_equal(a, b):
+            bad = int(np.sum(a != b)) if a.shape == b.shape else a.size
+            problems.append(f"{name}: {bad} of {a.size} values differ")
+    return problems
+
+
+def write(names: list[str] | None = None) -> None:
+    STORE.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, scene, options in SCENES:
+            if names and name not in names:
+                continue
+            ds = run_scene(scene, options, Path(tmp) / f"{name}.h5")
+            np.savez_compressed(STORE / f"{name}.npz", **arrays_of(ds))
+            print(f"{name}: {len(ds.data_vars)} variables stored", flush=True)
+
+
+def compare(names: list[str] | None = None) -> int:
+    failed = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, scene, options in SCENES:
+            if names and name not in names:
+                continue
+            now = arrays_of(run_scene(scene, options, Path(tmp) / f"{name}.h5"))
+            with np.load(STORE / f"{name}.npz") as f:
+                stored = {k: f[k] for k in f.files}
+            problems = differences(stored, now)
+            bitwise = all(digest(stored[k]) == digest(now[k]) for k in stored if k in now)
+            failed += bool(problems)
+            print(f"{name}: {'; '.join(problems) or 'identical'}"
+                  f"{' (bitwise)' if bitwise and not problems else ''}", flush=True)
+    return failed
+
+
+if __name__ == "__main__":
+    command, *names = sys.argv[1:] or ["compare"]
+    sys.exit(write(names) if command == "write" else compare(names))
