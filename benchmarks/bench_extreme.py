@@ -25,7 +25,7 @@ Per initial condition, at the production settings (rtol 1e-8, atol 1e-10, conver
   convergence_tol / (1 - |multiplier|)).
 
 A case fails loudly only by a crash; "unresolved" and "diverged" are reported with the
-kernel's reason (kernels/status.py). The table goes to ``--out``.
+kernel's reason (kernels/codes.py). The table goes to ``--out``.
 """
 
 from __future__ import annotations
@@ -47,7 +47,7 @@ if str(ROOT) not in sys.path:
 
 from softimpact_cli.config import IntegratorSettings  # noqa: E402
 from softimpact_cli.engine import Problem, classify_state, flow, record_trajectory  # noqa: E402
-from softimpact_cli.kernels.status import STATUS_TABLE  # noqa: E402
+from softimpact_cli.kernels.codes import STATUS_TABLE  # noqa: E402
 from softimpact_cli.systems import get_system  # noqa: E402
 
 WORKERS = 2

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from softimpact_cli.analysis.catalogue import label_orbit
 from softimpact_cli.engine import Problem, classify_state, flow
-from softimpact_cli.kernels.status import outcome
+from softimpact_cli.kernels.codes import outcome
 from softimpact_cli.labels import DIVERGED, UNRESOLVED
 
 TRANSIENT_PERIODS = 1000  # the study's fixed transient (forcing periods)

@@ -15,7 +15,7 @@ import numpy as np
 
 from .config import IntegratorSettings
 from .kernels import METHODS, cells, layout, orbit
-from .kernels.status import outcome
+from .kernels.codes import CONVERGED, MIXED_CELL, NO_ORBIT, outcome
 from .systems import Surfaces, System
 
 # istate[:layout.N_COUNTERS]; "stiff_steps" are the Rodas4 steps (the others explicit),
@@ -145,8 +145,8 @@ class Classification:
     contacts: int
     max_penetration: float
     counters: dict[str, int]
-    captured: int = -1  # index of the known orbit that captured it (-1: converged by itself)
-    cell_code: int = cells.MIXED  # label code taken from recurrence cells (orbit unknown)
+    captured: int = NO_ORBIT  # index of the known orbit that captured it
+    cell_code: int = MIXED_CELL  # label code taken from recurrence cells (orbit unknown)
 
     @property
     def outcome(self) -> str:
@@ -154,7 +154,7 @@ class Classification:
 
     @property
     def impacting(self) -> bool:
-        return self.status == 0 and self.max_penetration >= 0.0
+        return self.status == CONVERGED and self.max_penetration >= 0.0
 
 
 @cache

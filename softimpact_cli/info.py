@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .kernels.codes import CLASSIFIED_BY
 from .kinds import KINDS
 
 SUMMARY_KEYS = (
@@ -153,7 +154,7 @@ def sweep_summary(ds) -> dict:
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)
     status = ds["status"].values
-    from .kernels.status import STATUS_TABLE
+    from .kernels.codes import STATUS_TABLE
 
     totals = {"converged": 0, "unresolved": 0, "diverged": 0}
     for code, count in zip(*np.unique(status, return_counts=True), strict=True):
@@ -169,9 +170,8 @@ def sweep_summary(ds) -> dict:
             points[k]["found_nonimpacting"] = int(ds["found_nonimpacting"].isel(sel).values)
     if "captured" in ds:  # how trajectories were classified, and by which method
         how = ds["captured"].values
-        out["classified_by"] = {"own repeat": int(np.sum(how == 0)),
-                                "known orbit": int(np.sum(how == 1)),
-                                "recurrence cells": int(np.sum(how == 2))}
+        out["classified_by"] = {name: int(np.sum(how == code))
+                                for code, name in CLASSIFIED_BY.items()}
     if "steps" in ds:
         stiff = int(ds["stiff_steps"].values.sum())
         out["steps_by_method"] = {"explicit": int(ds["steps"].values.sum()) - stiff,

@@ -23,6 +23,14 @@ import re
 from dataclasses import dataclass
 from math import gcd
 
+from .kernels.codes import (
+    DIVERGED_LABEL,
+    IMPACTING_BASE,
+    PENDING,
+    UNMATCHED_BASE,
+    UNRESOLVED_LABEL,
+)
+
 UNRESOLVED = "unresolved"
 DIVERGED = "diverged"
 
@@ -102,18 +110,9 @@ def shift(left_index: int, right_index: int, left_period: int, right_period: int
     return (right_index - left_index) % gcd(left_period, right_period)
 
 
-# Integer codes (stored in sweep results). Catalogue solutions take 0, 1, ... in catalogue
-# order; the others are fixed by kind and period, so every chunk and every worker assigns
-# the same code to the same solution without coordination.
-PENDING = -9  # not computed yet (never in a complete result)
-DIVERGED_CODE = -3
-UNRESOLVED_CODE = -2
-IMPACTING_BASE = 1000  # impacting P{p} -> 1000 + p
-UNMATCHED_BASE = 2000  # unmatched P{p} -> 2000 + p
-
-
 def code_of(label: Label, catalogue_names: tuple[str, ...]) -> int:
-    """Integer code of a label, given the catalogue's names in code order."""
+    """Integer code of a label (``kernels.codes``, section 2), given the catalogue's names
+    in code order."""
     if label.kind in ("pair", "body"):
         name = label.name
         if name in catalogue_names:
@@ -123,7 +122,7 @@ def code_of(label: Label, catalogue_names: tuple[str, ...]) -> int:
         return IMPACTING_BASE + label.period
     if label.kind == "unmatched":
         return UNMATCHED_BASE + label.period
-    return UNRESOLVED_CODE if label.kind == UNRESOLVED else DIVERGED_CODE
+    return UNRESOLVED_LABEL if label.kind == UNRESOLVED else DIVERGED_LABEL
 
 
 def name_of(code: int, catalogue_names: tuple[str, ...]) -> str:
@@ -131,9 +130,9 @@ def name_of(code: int, catalogue_names: tuple[str, ...]) -> str:
     code = int(code)
     if 0 <= code < len(catalogue_names):
         return catalogue_names[code]
-    if code == UNRESOLVED_CODE:
+    if code == UNRESOLVED_LABEL:
         return UNRESOLVED
-    if code == DIVERGED_CODE:
+    if code == DIVERGED_LABEL:
         return DIVERGED
     if code == PENDING:
         return "pending"

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .labels import DIVERGED_CODE, UNRESOLVED_CODE
+from .kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
 
 THRESHOLD = 0.05  # a share of unresolved (or diverged) trajectories worth a warning
 STRICT_STATUS = 3  # exit status of --strict when a warning applies (result written)
@@ -21,8 +21,8 @@ def _shares(ds: xr.Dataset) -> tuple[int, int, int] | None:
     """(trajectories, unresolved, diverged) of the result, or None if it has none."""
     if "label" in ds.data_vars and ds.attrs.get("analysis") in ("basins", "stability", "map"):
         codes = ds["label"].values
-        return (codes.size, int(np.count_nonzero(codes == UNRESOLVED_CODE)),
-                int(np.count_nonzero(codes == DIVERGED_CODE)))
+        return (codes.size, int(np.count_nonzero(codes == UNRESOLVED_LABEL)),
+                int(np.count_nonzero(codes == DIVERGED_LABEL)))
     if ds.attrs.get("analysis") == "design" and "count" in ds.data_vars:
         ranked = ds["rank"].values >= 0  # the verified points (on the full sample)
         if not ranked.any():

@@ -18,7 +18,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .labels import DIVERGED_CODE, UNRESOLVED_CODE
+from .kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
 
 INTERVAL_ENV = "SOFTIMPACT_PROGRESS_INTERVAL"
 DEFAULT_INTERVAL_S = 30.0
@@ -74,8 +74,8 @@ class ProgressLines:
             codes = np.asarray(work)
             n = codes.size
             with self._lock:
-                self.unresolved += int(np.count_nonzero(codes == UNRESOLVED_CODE))
-                self.diverged += int(np.count_nonzero(codes == DIVERGED_CODE))
+                self.unresolved += int(np.count_nonzero(codes == UNRESOLVED_LABEL))
+                self.diverged += int(np.count_nonzero(codes == DIVERGED_LABEL))
                 self.labelled += n
         with self._lock:
             self.done += n

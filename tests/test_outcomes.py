@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import xarray as xr
 
-from softimpact_cli.labels import DIVERGED_CODE, UNRESOLVED_CODE
+from softimpact_cli.kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
 from softimpact_cli.outcomes import STRICT_STATUS, outcome_warnings
 
 
@@ -17,11 +17,11 @@ def _sweep(codes, kind="basins"):
 
 
 def test_shares_over_five_percent_are_named():
-    assert outcome_warnings(_sweep([0] * 95 + [UNRESOLVED_CODE] * 5), 400) == []
-    (message,) = outcome_warnings(_sweep([0] * 94 + [UNRESOLVED_CODE] * 6, "map"), 400)
+    assert outcome_warnings(_sweep([0] * 95 + [UNRESOLVED_LABEL] * 5), 400) == []
+    (message,) = outcome_warnings(_sweep([0] * 94 + [UNRESOLVED_LABEL] * 6, "map"), 400)
     assert message.startswith("6.0% of trajectories unresolved (no period within "
                               "max_periods = 400); raise [integrator] max_periods")
-    both = outcome_warnings(_sweep([UNRESOLVED_CODE] * 10 + [DIVERGED_CODE] * 10), 5)
+    both = outcome_warnings(_sweep([UNRESOLVED_LABEL] * 10 + [DIVERGED_LABEL] * 10), 5)
     assert [m.split(" (")[0] for m in both] == ["50.0% of trajectories unresolved",
                                                "50.0% of trajectories diverged"]
 
@@ -79,4 +79,4 @@ def test_a_sweep_that_resolves_nothing_warns_and_strict_fails_after_writing(tmp_
            "max_periods = 5)" in strict.stderr
     assert "softimpact: warning: the catalogue found no solution among" in strict.stderr
     with xr.open_dataset(out) as ds:  # written all the same
-        assert ds.attrs["complete"] == 1 and (ds["label"] == UNRESOLVED_CODE).all()
+        assert ds.attrs["complete"] == 1 and (ds["label"] == UNRESOLVED_LABEL).all()

@@ -4,20 +4,20 @@ import time
 
 import numpy as np
 
-from softimpact_cli.labels import DIVERGED_CODE, UNRESOLVED_CODE
+from softimpact_cli.kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
 from softimpact_cli.progress import ProgressLines, duration, interval_s
 
 
 def test_lines_count_unresolved_and_end_with_the_total():
     lines = []
     p = ProgressLines(8, initial=2, interval=0.02, write=lines.append)
-    p(np.array([0, UNRESOLVED_CODE, 1]))
+    p(np.array([0, UNRESOLVED_LABEL, 1]))
     deadline = time.monotonic() + 5
     while not lines and time.monotonic() < deadline:
         time.sleep(0.01)
     assert lines and lines[0].startswith("progress: 5/8 trajectories (62.5%), ")
     assert "ETA " in lines[0] and "unresolved 1 (33.33%)" in lines[0]
-    p(np.array([DIVERGED_CODE, 0, 0]))
+    p(np.array([DIVERGED_LABEL, 0, 0]))
     assert lines[-1].startswith("progress: 8/8 trajectories (100.0%), ")
     assert "unresolved 1 (16.67%)" in lines[-1] and "diverged 1 (16.67%)" in lines[-1]
     n = len(lines)

@@ -22,7 +22,8 @@ import xarray as xr
 
 from ..config import IntegratorSettings
 from ..engine import Problem, classify_state, record_trajectory
-from ..labels import DIVERGED_CODE, UNRESOLVED_CODE, code_of, name_of
+from ..kernels.codes import CONVERGED, DIVERGED_LABEL, UNRESOLVED_LABEL, label_code_of_status
+from ..labels import code_of, name_of
 from .catalogue import Catalogue, label_orbit
 from .critical_distance import critical_distance, uncoupled_pair
 
@@ -46,13 +47,13 @@ def follow_branch(system, values: dict, integrator: IntegratorSettings, catalogu
     for d in ds_values:
         problem = Problem(system, {**values, "d": float(d)}, integrator)
         cls = classify_state(problem, state, 0.0)
-        if cls.status == 0:
+        if cls.status == CONVERGED:
             label = label_orbit(catalogue, cls.orbit, cls.impacting, label_tol)
             code = code_of(label, names)
             points = cls.orbit
             state = cls.orbit[-1].copy()  # the last section point: t = 0 mod T
         else:
-            code = UNRESOLVED_CODE if cls.status in (1, 3, 4) else DIVERGED_CODE
+            code = label_code_of_status(cls.status)
             traj = record_trajectory(problem, state, 0.0, UNRESOLVED_POINTS, 1)
             points = traj.section_y[1:]
             if np.all(np.isfinite(points[-1])):
@@ -66,7 +67,7 @@ def follow_branch(system, values: dict, integrator: IntegratorSettings, catalogu
                     uncoupled_pair(system, values, values["phi"]), combo.orbit[0],
                     combo.orbit.shape[0])
         records.append({"d": float(d), "code": code, "points": points,
-                        "impacting": bool(cls.status == 0 and cls.impacting),
+                        "impacting": bool(cls.impacting),
                         "period": cls.period})
     # after destruction: impacting range, then the first non-impacting solution reached
     impacting = [r["d"] for r in records if r["impacting"]]
@@ -81,7 +82,7 @@ def follow_branch(system, values: dict, integrator: IntegratorSettings, catalogu
         if r["code"] >= 0:
             falls_to = name_of(r["code"], names)
             break
-        if r["code"] in (UNRESOLVED_CODE, DIVERGED_CODE):
+        if r["code"] in (UNRESOLVED_LABEL, DIVERGED_LABEL):
             first_run.append(r["d"])
     if first_run:
         impacting_range = [max(first_run), min(first_run)]

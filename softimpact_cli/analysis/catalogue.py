@@ -23,7 +23,7 @@ import numpy as np
 
 from ..config import ConfigError, IntegratorSettings
 from ..engine import Problem, classify_state, flow, record_trajectory
-from ..kernels.status import outcome
+from ..kernels.codes import CONVERGED, OK, outcome
 from ..labels import Label, shift
 from ..systems import System, get_system
 from ..systems.variational import initial_variational_state, variational_system
@@ -177,7 +177,7 @@ def refine_orbit(problem: Problem, x0: np.ndarray, period: int, tol: float = 1e-
     monodromy = np.full((n, n), np.nan)
     for _ in range(max_iter):
         status, z, _ = flow(var, initial_variational_state(x), 0.0, period * T)
-        if status != 0:
+        if status != OK:
             break
         monodromy = z[n:].reshape(n, n)
         r = z[:n] - x
@@ -214,7 +214,7 @@ def find_attractors(problem: Problem, states: np.ndarray, t0: float = 0.0,
         counts[outcome(cls.status)] += 1
         if progress is not None:
             progress(1)
-        if cls.status != 0:
+        if cls.status != CONVERGED:
             continue
         pts = cls.orbit
         tol = match_tol * max(1.0, float(np.max(np.abs(pts))))

@@ -55,6 +55,7 @@ import numpy as np
 import xarray as xr
 
 from ..engine import Problem, flow
+from ..kernels.codes import OK
 from ..labels import name_of
 from .catalogue import SHOOTING, body_problem, combinations, right_attractors
 from .critical_distance import critical_distances
@@ -250,7 +251,7 @@ def target_multipliers(system, values: dict, left: list, target: str, point: dic
     pair = Problem(system, values, SHOOTING)
     q = combo.orbit.shape[0]
     status, _, max_g = flow(pair, combo.orbit[0], 0.0, q * pair.period)
-    if status != 0 or max_g >= 0.0:
+    if status != OK or max_g >= 0.0:
         return False, np.full(4, np.nan + 0j)
     mult = np.concatenate([combo.left.multipliers ** (q // combo.left.period),
                            combo.right.multipliers ** (q // combo.right.period)])

@@ -8,7 +8,7 @@ import numpy as np
 import xarray as xr
 
 from ..engine import Problem, classify_state, record_trajectory
-from ..kernels.status import message, outcome
+from ..kernels.codes import message, outcome
 
 
 def trajectory_dataset(problem: Problem, state, t0: float, periods: int,

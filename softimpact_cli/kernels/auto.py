@@ -33,6 +33,7 @@ from numba import njit
 
 from . import dopri5 as dp
 from . import rosenbrock as ro
+from .codes import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
 from .common import (
     apply_switch,
     out_of_bounds,
@@ -62,7 +63,6 @@ from .layout import (
     YNEW,
     H,
 )
-from .status import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
 from .switching import earliest_exit
 
 ORDER = 4  # the lower of the two methods' orders (dopri5 5, rodas4 4)

@@ -3,7 +3,7 @@
 A cell is a box of side ``cell_size`` in the state space of the stroboscopic section (the
 idea of Attractors.jl's recurrences method). Every section point a classified trajectory
 visited marks its cell with that trajectory's label code; a cell that two trajectories
-with different labels visited is marked ``MIXED`` and never used again. A later
+with different labels visited is marked ``MIXED_CELL`` and never used again. A later
 trajectory whose section points land in cells of one label for ``cell_hits``
 consecutive periods takes that label without integrating further. Cells are only valid
 for one parameter point: the caller starts a new table for each.
@@ -13,7 +13,8 @@ import numpy as np
 from numba import njit, types
 from numba.typed import Dict
 
-MIXED = -1  # a cell visited on the way to different labels
+from .codes import MIXED_CELL
+
 NO_CELL = -1  # key of a point outside the representable range
 _BITS = 15  # bits per coordinate of a key (4 coordinates fit in an int64)
 _OFFSET = 1 << (_BITS - 1)
@@ -42,13 +43,13 @@ def cell_key(y, cell_size):
 
 @njit(cache=True)
 def remember_cells(cells, visited, n_visited, code):
-    """Mark the cells of ``visited[:n_visited]`` with ``code`` (MIXED where they disagree)."""
+    """Mark the cells of ``visited[:n_visited]`` with ``code`` (MIXED_CELL where they disagree)."""
     for i in range(n_visited):
         key = visited[i]
         if key == NO_CELL:
             continue
         if key in cells:
             if cells[key] != code:
-                cells[key] = MIXED
+                cells[key] = MIXED_CELL
         else:
             cells[key] = code

@@ -13,6 +13,7 @@ from math import isfinite, sqrt
 import numpy as np
 from numba import njit
 
+from .codes import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
 from .common import (
     apply_switch,
     out_of_bounds,
@@ -39,7 +40,6 @@ from .layout import (
     YTMP,
     H,
 )
-from .status import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
 from .switching import earliest_exit, mode_of
 
 ORDER = 5

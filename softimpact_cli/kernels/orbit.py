@@ -21,9 +21,9 @@ from math import ceil
 import numpy as np
 from numba import njit
 
-from .cells import MIXED, NO_CELL, cell_key, new_cells
+from .cells import NO_CELL, cell_key, new_cells
+from .codes import CONVERGED, MIXED_CELL, NO_ORBIT, OK, UNRESOLVED
 from .layout import MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
-from .status import CONVERGED, OK, UNRESOLVED
 from .switching import mode_of
 
 
@@ -142,7 +142,7 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
     counters : (N_ISTATE,) int64 array of the integrator's counters
     captured : int, index of the known orbit that captured the trajectory, else -1
     cell_code : int, the label code taken from the cells (status CONVERGED, q = 0, orbit
-                unknown), else MIXED (-1); ``visited`` then holds n_used + 1 keys
+                unknown), else MIXED_CELL; ``visited`` then holds n_used + 1 keys
     """
     dim = y0.shape[0]
     y = y0.copy()
@@ -160,10 +160,10 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
         status = advance(rhs, p, y, t, n0 * period, A_s, b_s, relevance, contact, opts,
                          istate, fstate, work, empty_t, empty_y)
         if status != OK:
-            return status, 0, 0, orbit, 0, -np.inf, istate, -1, MIXED
+            return status, 0, 0, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL
     hist[0] = y
     use_cells = cell_size > 0.0 and visited.shape[0] > 0
-    run, run_code = 0, MIXED
+    run, run_code = 0, MIXED_CELL
     if use_cells:
         visited[0] = cell_key(y, cell_size)
     use_known = capture_tol > 0.0 and known.shape[0] > 0
@@ -177,7 +177,7 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
         status = advance(rhs, p, y, t_start, t_start + period, A_s, b_s, relevance, contact,
                          opts, istate, fstate, work, empty_t, empty_y)
         if status != OK:
-            return status, 0, n, orbit, 0, -np.inf, istate, -1, MIXED
+            return status, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL
         k = n % depth
         hist[k] = y
         contacts[k] = istate[N_CONTACTS] - c_before
@@ -185,8 +185,8 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
         if use_cells and n < visited.shape[0]:  # every visited key is written, whatever
             key = cell_key(y, cell_size)        # classifies the trajectory below
             visited[n] = key
-            code = cells.get(key, MIXED) if key != NO_CELL else MIXED
-            if code == MIXED:
+            code = cells.get(key, MIXED_CELL) if key != NO_CELL else MIXED_CELL
+            if code == MIXED_CELL:
                 run = 0
             elif code == run_code:
                 run += 1
@@ -210,7 +210,7 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
                 q = known_q[hit_k]
                 for i in range(q):  # the known orbit, time order, ending at point hit_j
                     orbit[i] = known[hit_k, (hit_j - q + 1 + i) % q]
-                return CONVERGED, q, n, orbit, 0, known_max_g[hit_k], istate, hit_k, MIXED
+                return CONVERGED, q, n, orbit, 0, known_max_g[hit_k], istate, hit_k, MIXED_CELL
         if run >= cell_hits:
             return CONVERGED, 0, n, orbit, 0, -np.inf, istate, -1, run_code
         q = _repeat_period(hist, n, depth, max_orbit_period, tol)
@@ -222,8 +222,8 @@ def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact,
                 orbit[i] = hist[kk]
                 total += contacts[kk]
                 worst = max(worst, max_g[kk])
-            return CONVERGED, q, n, orbit, total, worst, istate, -1, MIXED
-    return UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate, -1, MIXED
+            return CONVERGED, q, n, orbit, total, worst, istate, NO_ORBIT, MIXED_CELL
+    return UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL
 
 
 @njit(cache=True)

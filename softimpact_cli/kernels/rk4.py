@@ -13,10 +13,10 @@ from math import ceil
 import numpy as np
 from numba import njit
 
+from .codes import DIVERGED, OK, TOO_MANY_SWITCHES
 from .common import apply_switch, out_of_bounds, plain_mode_update, track_contact, track_contact_at
 from .dense import hermite_coefficients, write_samples
 from .layout import BOUND, H_FIXED, K0, LOCATE, MAX_SWITCHES, MODE, N_RHS, N_STEPS, YNEW, YTMP
-from .status import DIVERGED, OK, TOO_MANY_SWITCHES
 from .switching import earliest_exit, mode_of
 
 ORDER = 4

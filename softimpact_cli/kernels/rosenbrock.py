@@ -40,6 +40,7 @@ from math import isfinite, sqrt
 import numpy as np
 from numba import njit
 
+from .codes import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
 from .common import (
     apply_switch,
     out_of_bounds,
@@ -65,7 +66,6 @@ from .layout import (
     YNEW,
     H,
 )
-from .status import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
 from .switching import earliest_exit, mode_of, poly_rate, surface_polynomial, surface_value
 
 ORDER = 4  # of the solution; the embedded one is 3 (error estimate ~ h^4)

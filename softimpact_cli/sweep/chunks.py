@@ -13,14 +13,19 @@ import numpy as np
 from ..analysis.catalogue import Catalogue, label_orbit
 from ..config import GRID_AXES, Grid, IntegratorSettings
 from ..engine import KnownOrbits, Problem, RecurrenceCells, classify_state
-from ..kernels.cells import MIXED
-from ..kernels.status import outcome
-from ..labels import DIVERGED_CODE, UNRESOLVED_CODE, code_of
+from ..kernels.codes import (
+    BY_CELLS,
+    BY_KNOWN_ORBIT,
+    BY_OWN_REPEAT,
+    CONVERGED,
+    MIXED_CELL,
+    NO_ORBIT,
+    label_code_of_status,
+)
+from ..labels import code_of
 from ..systems import get_system
 
 CAPTURE_MARGIN = 10.0  # d - d_crit must exceed this many capture radii
-CAPTURED_BY_ORBIT = 1  # values of the "captured" field (0: the orbit's own repeat)
-CAPTURED_BY_CELLS = 2
 
 RESULT_FIELDS = {  # name -> dtype of the per-trajectory arrays a chunk returns
     "label": np.int32,
@@ -117,12 +122,12 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             current = point
         t0 = grid_t0 if ctx.t0 is None else float(ctx.t0[ic])
         cls = classify_state(problem, ctx.states[ic], t0, known, cells)
-        how = CAPTURED_BY_ORBIT if cls.captured >= 0 else 0
-        if cls.status == 0 and cls.cell_code != MIXED:
+        how = BY_KNOWN_ORBIT if cls.captured != NO_ORBIT else BY_OWN_REPEAT
+        if cls.status == CONVERGED and cls.cell_code != MIXED_CELL:
             code = cls.cell_code
-            how = CAPTURED_BY_CELLS
+            how = BY_CELLS
             period, contacts, max_pen = summary[code]
-        elif cls.status == 0:
+        elif cls.status == CONVERGED:
             label = label_orbit(catalogue, cls.orbit, cls.impacting, ctx.label_tol)
             code = code_of(label, ctx.names)
             if (point, code) not in orbits:
@@ -130,9 +135,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
             summary.setdefault(code, (period, contacts, max_pen))
         else:
-            code = UNRESOLVED_CODE if outcome(cls.status) == "unresolved" else DIVERGED_CODE
+            code = label_code_of_status(cls.status)
             period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
-        if cells is not None and cls.status == 0:
+        if cells is not None and cls.status == CONVERGED:
             cells.remember(cls, code)
         out["label"][k] = code
         out["status"][k] = cls.status

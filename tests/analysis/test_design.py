@@ -19,7 +19,7 @@ from softimpact_cli.analysis.stability import wilson_interval
 from softimpact_cli.config import parse_scene
 from softimpact_cli.engine import Problem, flow
 from softimpact_cli.info import design_summary
-from softimpact_cli.labels import IMPACTING_BASE, UNRESOLVED_CODE
+from softimpact_cli.kernels.codes import IMPACTING_BASE, UNRESOLVED_LABEL
 
 # ------------------------------------------------------------------ pure parts
 
@@ -96,7 +96,7 @@ def test_perturbed_points():
 
 def test_group_counts():
     names = ("L1^1 R1-0^1", "L1^2 R1-0^2")
-    codes = np.array([[0, 0, 1, IMPACTING_BASE + 1, IMPACTING_BASE + 2, UNRESOLVED_CODE]])
+    codes = np.array([[0, 0, 1, IMPACTING_BASE + 1, IMPACTING_BASE + 2, UNRESOLVED_LABEL]])
     groups, counts = group_counts(codes, names)
     c = dict(zip(groups, counts[0], strict=True))
     assert c["L1^1 R1-0^1"] == 2 and c["L1^2 R1-0^2"] == 1 and c["impacting (all)"] == 2

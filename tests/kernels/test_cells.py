@@ -1,5 +1,5 @@
 """Recurrence cells: keys identify boxes of the section exactly, conflicting labels mark a
-cell MIXED, and a sweep with cells labels as a sweep without them."""
+cell MIXED_CELL, and a sweep with cells labels as a sweep without them."""
 
 from dataclasses import replace
 
@@ -7,7 +7,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from softimpact_cli.kernels.cells import MIXED, NO_CELL, cell_key, new_cells, remember_cells
+from softimpact_cli.kernels.cells import NO_CELL, cell_key, new_cells, remember_cells
+from softimpact_cli.kernels.codes import BY_CELLS, MIXED_CELL
 
 coordinate = st.integers(min_value=-5000, max_value=5000)
 offset = st.floats(min_value=0.01, max_value=0.99)  # clear of rounding at cell edges
@@ -39,13 +40,13 @@ def test_cells_visited_on_the_way_to_two_labels_become_mixed():
     remember_cells(cells, np.array([10, 11, NO_CELL, 12]), 4, 3)
     assert dict(cells) == {10: 3, 11: 3, 12: 3}
     remember_cells(cells, np.array([12, 13, 99]), 2, 1000)  # only the first two count
-    assert dict(cells) == {10: 3, 11: 3, 12: MIXED, 13: 1000}
+    assert dict(cells) == {10: 3, 11: 3, 12: MIXED_CELL, 13: 1000}
     remember_cells(cells, np.array([12]), 1, 3)
-    assert cells[12] == MIXED  # once mixed, always mixed
+    assert cells[12] == MIXED_CELL  # once mixed, always mixed
 
 
 def test_a_sweep_with_cells_labels_like_one_without():
-    from softimpact_cli.sweep.chunks import CAPTURED_BY_CELLS, run_chunk
+    from softimpact_cli.sweep.chunks import run_chunk
     from tests.sweep.test_capture import context
 
     ctx, _ = context(res=24)  # figure 6(d) plane, 576 initial conditions, one chunk
@@ -54,7 +55,7 @@ def test_a_sweep_with_cells_labels_like_one_without():
     cells = replace(ctx, integrator=replace(ctx.integrator, cell_size=0.05, cell_hits=5))
     fast = run_chunk(cells, 0, n)
     assert np.array_equal(fast["label"], plain["label"])
-    by_cells = fast["captured"] == CAPTURED_BY_CELLS
+    by_cells = fast["captured"] == BY_CELLS
     assert by_cells.mean() > 0.3
     assert fast["periods_used"][by_cells].mean() < plain["periods_used"][by_cells].mean()
     # a cell-labelled trajectory reports its label's orbit period and penetration

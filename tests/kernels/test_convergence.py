@@ -19,7 +19,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from softimpact_cli.kernels import layout
-from softimpact_cli.kernels.status import OK
+from softimpact_cli.kernels.codes import OK
 from tests import naive
 
 from .helpers import DUFFING_BODY, DUFFING_PAIR, dopri5_fixed, fit_slope, problem, rk4_fixed

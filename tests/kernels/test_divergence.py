@@ -12,7 +12,7 @@ import pytest
 
 from softimpact_cli.engine import classify_state
 from softimpact_cli.kernels import rk4
-from softimpact_cli.kernels.status import CONVERGED, DIVERGED, STATUS_TABLE, outcome
+from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, STATUS_TABLE, outcome
 
 from .helpers import DUFFING_PAIR, problem
 

@@ -25,7 +25,7 @@ import pytest
 from numba import njit
 
 from softimpact_cli.engine import Problem, classify_state, record_trajectory
-from softimpact_cli.kernels.status import CONVERGED, OK
+from softimpact_cli.kernels.codes import CONVERGED, OK
 from softimpact_cli.systems.base import (
     COUPLING_PARAMETERS,
     Parameter,

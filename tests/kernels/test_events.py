@@ -15,7 +15,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar
 
 from softimpact_cli.kernels import layout
-from softimpact_cli.kernels.status import OK
+from softimpact_cli.kernels.codes import OK
 from softimpact_cli.kernels.switching import first_exit, poly_max
 from tests import naive
 

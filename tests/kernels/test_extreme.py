@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from softimpact_cli.engine import classify_state, flow
-from softimpact_cli.kernels.status import CONVERGED, DIVERGED, UNRESOLVED, message
+from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, UNRESOLVED, message
 
 from .helpers import BILINEAR_PAIR, DUFFING_PAIR, problem
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from softimpact_cli.engine import classify_state, record_trajectory
-from softimpact_cli.kernels.status import CONVERGED, OK
+from softimpact_cli.kernels.codes import CONVERGED, OK
 
 from .helpers import problem
 

@@ -22,8 +22,8 @@ from scipy.integrate import solve_ivp
 
 from softimpact_cli.kernels import dense, dopri5, layout, orbit
 from softimpact_cli.kernels import rosenbrock as ro
+from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.kernels.orbit import new_state
-from softimpact_cli.kernels.status import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.systems import get_system
 from tests import naive
 

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from softimpact_cli.engine import record_trajectory
-from softimpact_cli.kernels.status import OK
+from softimpact_cli.kernels.codes import OK
 from tests import naive
 
 from .helpers import BILINEAR_PAIR, DUFFING_PAIR, problem

@@ -4,7 +4,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.colors import to_hex
 
-from softimpact_cli.labels import IMPACTING_BASE, UNRESOLVED_CODE
+from softimpact_cli.kernels.codes import IMPACTING_BASE, UNRESOLVED_LABEL
 from softimpact_cli.plot.bifurcation import draw_bifurcation
 from softimpact_cli.plot.palette import IMPACTING, colour_of
 
@@ -18,9 +18,9 @@ def followed_pair() -> xr.Dataset:
     d = np.array([6.0, 5.0, 4.0, 3.0, 2.0, 1.0])
     x1 = np.array([[-0.2] * 6, [-6.0, -6.0, -6.0, -7.0, -0.2, -0.2]])[:, :, None]
     x2 = np.array([[1.0] * 6, [9.0, 9.0, 9.0, 5.0, 1.0, 1.0]])[:, :, None]
-    code = np.array([[0, 0, 0, 0, 0, UNRESOLVED_CODE], [1, 1, 1, IMPACTING_BASE + 1, 0, 0]])
+    code = np.array([[0, 0, 0, 0, 0, UNRESOLVED_LABEL], [1, 1, 1, IMPACTING_BASE + 1, 0, 0]])
     impacting = (code >= IMPACTING_BASE).astype(np.int8)
-    codes = [UNRESOLVED_CODE, 0, 1, IMPACTING_BASE + 1]
+    codes = [UNRESOLVED_LABEL, 0, 1, IMPACTING_BASE + 1]
     label_names = ["unresolved", *NAMES, "impacting P1"]
     return xr.Dataset(
         {"section_x1": (("branch", "d", "point"), x1),
