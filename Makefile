@@ -16,7 +16,7 @@ $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test,dask]'
-	$(PY) -m softimpact_cli.warmup
+	$(PY) -m softimpact_cli.analysis.warmup
 	touch $(STAMP)
 
 test: $(STAMP)

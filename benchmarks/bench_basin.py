@@ -54,7 +54,7 @@ from study_method import TRANSIENT_PERIODS as STUDY_PERIODS
 from study_method import StudyMethod
 from where_time_goes import StageClock, phases, rhs_floor
 
-from softimpact_cli.labels import name_of
+from softimpact_cli.analysis.labels import name_of
 from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep
 
 REFERENCE = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,

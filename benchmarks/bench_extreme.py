@@ -45,8 +45,8 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
+from softimpact_cli.analysis.engine import Problem, classify_state, flow, record_trajectory  # noqa: E402
 from softimpact_cli.config import IntegratorSettings  # noqa: E402
-from softimpact_cli.engine import Problem, classify_state, flow, record_trajectory  # noqa: E402
 from softimpact_cli.kernels.codes import STATUS_TABLE  # noqa: E402
 from softimpact_cli.systems import get_system  # noqa: E402
 

@@ -55,9 +55,9 @@ from _common import (
 )
 from _precision_report import write_report
 
-from softimpact_cli._numba_cache_dir import source_hash
+from softimpact_cli.analysis.engine import Problem, record_trajectory
 from softimpact_cli.config import IntegratorSettings, parse_scene
-from softimpact_cli.engine import Problem, record_trajectory
+from softimpact_cli.kernels.numba_cache import source_hash
 from softimpact_cli.sweep import runner
 from softimpact_cli.sweep.chunks import SweepContext
 
@@ -70,7 +70,8 @@ FLOOR_CHECK_STEPS = 46080  # RK4 with location at T/46080: an independent check 
 BASIN_REFERENCE = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
                        max_periods=6000, capture_tol=0.0)
 # what decides a label besides the integrator: a change here recomputes the reference
-CLASSIFYING_SOURCES = ("engine.py", "labels.py", "sweep/chunks.py", "analysis/catalogue.py")
+CLASSIFYING_SOURCES = ("analysis/engine.py", "analysis/labels.py", "sweep/chunks.py",
+                       "analysis/catalogue.py")
 FAMILIES = ("RK4, switches located", "RK4 plain (study's scheme)", "dopri5", "rodas4")
 
 

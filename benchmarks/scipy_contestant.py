@@ -13,7 +13,7 @@ import numpy as np
 from _common import ROOT  # noqa: F401  (puts the repository root on sys.path)
 
 from softimpact_cli.analysis.catalogue import label_orbit
-from softimpact_cli.labels import DIVERGED, UNRESOLVED
+from softimpact_cli.analysis.labels import DIVERGED, UNRESOLVED
 from tests.naive import duffing_pair_model, solve_with_events
 
 TRANSIENT = 300  # forcing periods integrated before recording

@@ -10,9 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from softimpact_cli.analysis.catalogue import label_orbit
-from softimpact_cli.engine import Problem, classify_state, flow
+from softimpact_cli.analysis.engine import Problem, classify_state, flow
+from softimpact_cli.analysis.labels import DIVERGED, UNRESOLVED
 from softimpact_cli.kernels.codes import outcome
-from softimpact_cli.labels import DIVERGED, UNRESOLVED
 
 TRANSIENT_PERIODS = 1000  # the study's fixed transient (forcing periods)
 CLASSIFY_PERIODS = 100  # after it: periods allowed to find the repeat

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 from _common import scene_at
 
-from softimpact_cli.engine import Problem
+from softimpact_cli.analysis.engine import Problem
 from softimpact_cli.kernels import orbit as orbit_kernels
 from softimpact_cli.sweep.chunks import run_chunk
 from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep, sweep_context

@@ -53,10 +53,10 @@ def _open(path: str):
 
 def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
     """A tqdm bar on stderr (points/s, ETA) when it is a terminal, else a line every
-    $SOFTIMPACT_PROGRESS_INTERVAL s (default 30, see progress.py); returns the callable
+    $SOFTIMPACT_PROGRESS_INTERVAL s (default 30, see report/progress.py); returns the callable
     fed with counts or with a chunk's label codes."""
     if not sys.stderr.isatty():
-        from .progress import ProgressLines
+        from .report.progress import ProgressLines
 
         return ProgressLines(total, initial, unit)
     from tqdm import tqdm
@@ -68,11 +68,11 @@ def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
 def _interruptible(func):
     """Ctrl-C or SIGTERM end the command with one line saying what was kept (a callable
     the command may put in ``ctx.meta["softimpact.kept"]``; else "nothing written") and
-    exit status 128 + the signal: 130 (SIGINT), 143 (SIGTERM). See interrupt.py."""
+    exit status 128 + the signal: 130 (SIGINT), 143 (SIGTERM). See sweep/interrupt.py."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        from . import interrupt
+        from .sweep import interrupt
 
         with interrupt.raising_on_signals():
             try:
@@ -89,8 +89,8 @@ def _interruptible(func):
 
 def _warn_outcomes(ds, scene, strict: bool) -> None:
     """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
-    --strict, exit with outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
-    from .outcomes import STRICT_STATUS, outcome_warnings
+    --strict, exit with report.outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
+    from .report.outcomes import STRICT_STATUS, outcome_warnings
 
     messages = outcome_warnings(ds, scene.integrator.max_periods)
     for message in messages:
@@ -102,8 +102,8 @@ def _warn_outcomes(ds, scene, strict: bool) -> None:
 def _check_rk4_step(scene, strict: bool) -> None:
     """Warn (or, with --strict, refuse) when the scene's fixed RK4 step is unstable at any
     of its grid points."""
-    from .engine import Problem
-    from .step_stability import rk4_step_warning
+    from .analysis.engine import Problem
+    from .analysis.step_stability import rk4_step_warning
 
     points = [dict(scene.values)]
     if scene.grid is not None and scene.system.bodies == 2:
@@ -205,17 +205,17 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     if dry_run:
         from dataclasses import replace
 
-        from .run import plan_text
+        from .kinds.run import plan_text
 
         click.echo(plan_text(replace(sc, output=out), workers, chunk_size))
         return
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     _check_rk4_step(sc, strict)
-    from .warmup import announce_compilation
+    from .analysis.warmup import announce_compilation
     announce_compilation(sc)
     if kind_of(sc.analysis.kind).sweep:
-        from .interrupt import modified, sweep_kept
         from .sweep import run_sweep
+        from .sweep.interrupt import modified, sweep_kept
 
         flags = ("--quick",) * quick + (("--resolution", str(resolution)) if resolution else ())
         click.get_current_context().meta["softimpact.kept"] = functools.partial(
@@ -240,7 +240,7 @@ def _run_whole(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool):
     """Run a scene that is not a sweep (every kind but basins, stability, map), write its
     result, print what its kind reports and the outcome line; return the dataset."""
     from .kinds import get as kind_of
-    from .run import run_scene
+    from .kinds.run import run_scene
     from .store import write_result
     from .store.lock import output_lock
     from .store.provenance import command_line
@@ -309,17 +309,17 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
     if dry_run:
         from dataclasses import replace
 
-        from .run import plan_text
+        from .kinds.run import plan_text
 
         click.echo(plan_text(replace(sc, output=out)))
         return
-    from .warmup import announce_compilation
+    from .analysis.warmup import announce_compilation
     announce_compilation(sc)
     _warn_outcomes(_run_whole(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
 
 
 def _store_check(scene, out: Path, sample: int) -> None:
-    from .check import check_scene, report_attributes
+    from .kinds.check import check_scene, report_attributes
     from .store import add_attributes
 
     report = check_scene(scene, sample, result=_open(str(out)))
@@ -353,10 +353,10 @@ def _format_check(report: dict) -> str:
 @_user_errors
 def check(scene, sample, seed, as_json, fail_over):
     """Rerun part of SCENE at tightened settings: label changes and wall-time ratio."""
-    from .check import check_scene, over_limit
+    from .kinds.check import check_scene, over_limit
 
     sc = load_scene(scene)
-    from .warmup import announce_compilation
+    from .analysis.warmup import announce_compilation
     announce_compilation(sc)
     try:
         report = check_scene(sc, sample, seed)
@@ -383,7 +383,7 @@ def check(scene, sample, seed, as_json, fail_over):
 @_user_errors
 def compare(result_a, result_b, max_label_change, max_share_change, max_d_change, as_json):
     """Differences of RESULT_B from RESULT_A (same scene layout): labels, shares, d."""
-    from .compare import compare_results, format_comparison, limits_exceeded
+    from .report.compare import compare_results, format_comparison, limits_exceeded
 
     report = compare_results(_open(result_a), _open(result_b), result_a, result_b)
     why = limits_exceeded(report, max_label_change, max_share_change, max_d_change)
@@ -403,8 +403,8 @@ def example(kind):
     Example:
       softimpact example basins > my_basins.toml && softimpact sweep my_basins.toml
     """
-    from .examples import EXAMPLES
-    from .examples import example as example_scene
+    from .config.examples import EXAMPLES
+    from .config.examples import example as example_scene
 
     if kind is None:
         click.echo("kinds: " + ", ".join(EXAMPLES) + " (softimpact example KIND)")
@@ -578,7 +578,7 @@ def plot_catalogue_cmd(result, output, dpi):
 @_user_errors
 def info(result, as_json, compare):
     """What RESULT holds: scene, status, period, contacts, wall time."""
-    from .info import compare_shares, describe, incomplete_summary
+    from .report.info import compare_shares, describe, incomplete_summary
     from .store.sweep_store import SweepStore
 
     ds = _open(result)
@@ -610,7 +610,7 @@ def info(result, as_json, compare):
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
-    from .info_text import format_summary
+    from .report.info_text import format_summary
 
     click.echo(format_summary(summary, ds))
 

@@ -21,11 +21,11 @@ import numpy as np
 import xarray as xr
 
 from ..config import IntegratorSettings
-from ..engine import Problem, classify_state, record_trajectory
 from ..kernels.codes import CONVERGED, DIVERGED_LABEL, UNRESOLVED_LABEL, label_code_of_status
-from ..labels import code_of, name_of
 from .catalogue import Catalogue, label_orbit
 from .critical_distance import critical_distance, uncoupled_pair
+from .engine import Problem, classify_state, record_trajectory
+from .labels import code_of, name_of
 
 UNRESOLVED_POINTS = 30  # section points recorded when no period is found
 

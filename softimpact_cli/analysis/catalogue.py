@@ -7,7 +7,7 @@
    with the monodromy matrix from the variational equations; its eigenvalues are the
    Floquet multipliers.
 3. Attractors are numbered by (period, amplitude) ascending and their points put in
-   canonical order (see :mod:`softimpact_cli.labels`).
+   canonical order (see :mod:`softimpact_cli.analysis.labels`).
 4. The right body's attractors follow from the left body's without a search:
    ``x_R(t) = sign * x_L(t + (phi - phase) / w)`` (time shift for the Duffing pair,
    mirror plus half-period shift for the bilinear pair).
@@ -22,11 +22,11 @@ from math import gcd
 import numpy as np
 
 from ..config import ConfigError, IntegratorSettings
-from ..engine import Problem, classify_state, flow, record_trajectory
 from ..kernels.codes import CONVERGED, OK, outcome
-from ..labels import Label, shift
 from ..systems import System, get_system
 from ..systems.variational import initial_variational_state, variational_system
+from .engine import Problem, classify_state, flow, record_trajectory
+from .labels import Label, shift
 
 SHOOTING = IntegratorSettings(method="dopri5", rtol=1e-12, atol=1e-13)
 

@@ -16,9 +16,9 @@ import numpy as np
 import xarray as xr
 
 from ..config import IntegratorSettings
-from ..engine import Problem, flow, record_trajectory
 from ..systems import System
 from .catalogue import Catalogue, combinations, right_attractors
+from .engine import Problem, flow, record_trajectory
 
 TIGHT = IntegratorSettings(method="dopri5", rtol=1e-12, atol=1e-13)
 NO_CONTACT_D = 1e12  # a gap no orbit reaches: the pair integrates uncoupled

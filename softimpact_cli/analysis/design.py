@@ -54,11 +54,11 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from ..engine import Problem, flow
 from ..kernels.codes import OK
-from ..labels import name_of
 from .catalogue import SHOOTING, body_problem, combinations, right_attractors
 from .critical_distance import critical_distances
+from .engine import Problem, flow
+from .labels import name_of
 from .stability import groups, wilson_interval
 
 AXES = ("d", "phi", "k_c", "c_c")

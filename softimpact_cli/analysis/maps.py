@@ -12,13 +12,13 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..labels import parse_label
 from .critical_distance import critical_distances
+from .labels import parse_label
 
 
 def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list) -> xr.Dataset:
     """Add predicted_count, found_count, found_nonimpacting to a sweep result."""
-    from ..info import grid_dims
+    from ..report.info import grid_dims
 
     dims = grid_dims(ds)
     names = [str(n) for n in ds["label_name"].values]

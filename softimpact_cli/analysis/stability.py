@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..labels import parse_label
+from .labels import parse_label
 
 Z95 = 1.959963984540054
 

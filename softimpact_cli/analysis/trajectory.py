@@ -7,8 +7,8 @@ import time
 import numpy as np
 import xarray as xr
 
-from ..engine import Problem, classify_state, record_trajectory
 from ..kernels.codes import message, outcome
+from .engine import Problem, classify_state, record_trajectory
 
 
 def trajectory_dataset(problem: Problem, state, t0: float, periods: int,

@@ -11,7 +11,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
-from ..expressions import parse_multiple
+from .expressions import parse_multiple
 from .limits import MAX_INITIAL_CONDITIONS, MAX_SEED
 from .reader import ConfigError, Section
 
@@ -52,7 +52,7 @@ class DesignAnalysis:
 
 def check_target(name: object, where: str) -> str:
     """The target name if it names a non-impacting pair; ConfigError naming ``where``."""
-    from ..labels import parse_label
+    from ..analysis.labels import parse_label
 
     if not isinstance(name, str):
         raise ConfigError(f"{where}: must be a name like 'L1^1 R1-0^1', got {name!r}")

@@ -10,7 +10,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
-from ..expressions import parse_multiple
+from .expressions import parse_multiple
 
 MAX_PROBLEM_CHARS = 300  # longest problem text of one message
 

@@ -154,7 +154,7 @@ def _values(sec: Section, key: str, symbol: str | None, unit: float) -> tuple[fl
     def one(v, where=key):
         if symbol is not None:
             try:
-                from ..expressions import parse_multiple
+                from .expressions import parse_multiple
 
                 return parse_multiple(v, symbol, unit)
             except ValueError as exc:
@@ -236,7 +236,7 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
 def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period: float,
                  check_value) -> Grid:
     """[grid] panels = [{d = .., phi = ..}, ...]: an explicit list of parameter points."""
-    from ..expressions import parse_multiple
+    from .expressions import parse_multiple
 
     panels = sec.raw("panels")
     sec.finish(("panels",))  # panels exclude the other grid keys

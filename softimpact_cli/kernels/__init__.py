@@ -8,10 +8,12 @@ kernels take the method as a first-class function:
             sample_t, sample_y) -> status
 """
 
-from . import auto, common, dense, dopri5, orbit, rk4, rosenbrock, switching
-from .numba_cache import stabilise
+from .numba_cache import source_keyed_cache, stabilise
 
-for _module in (auto, common, dense, dopri5, orbit, rk4, rosenbrock, switching):
+with source_keyed_cache():  # every jitted module of the package, imported here
+    from . import auto, cells, common, dense, dopri5, orbit, rk4, rosenbrock, switching
+
+for _module in (auto, cells, common, dense, dopri5, orbit, rk4, rosenbrock, switching):
     stabilise(_module)
 
 # method name -> module (each has ``advance`` and ``ORDER``; "auto" switches between

@@ -26,7 +26,7 @@ class BifurcationAnalysis:
 
 
 def read(sec, ctx) -> BifurcationAnalysis:
-    from ..labels import parse_label
+    from ..analysis.labels import parse_label
 
     if ctx.system.bodies != 2:
         raise sec.fail("kind", "bifurcation along d needs a pair ([system] bodies = 2)")
@@ -102,7 +102,7 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 
 def check(scene, sample, seed, result=None) -> dict:
-    from ..check import check_bifurcation
+    from .check import check_bifurcation
 
     return check_bifurcation(scene)
 

@@ -61,13 +61,13 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 
 def summary(ds) -> dict:
-    from ..info import catalogue_summary
+    from ..report.info import catalogue_summary
 
     return catalogue_summary(ds)
 
 
 def report(ds) -> str:
-    from ..info import format_catalogue
+    from ..report.info import format_catalogue
 
     return format_catalogue(ds)
 

@@ -7,9 +7,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..config.expressions import parse_multiple
 from ..config.reader import ConfigError
 from ..config.sweep import read_catalogue, read_grid
-from ..expressions import parse_multiple
 from . import AnalysisKind, Sections, forcing_period
 
 QUICK_PHIS = 64  # --quick: largest number of phases of a critical-distance curve
@@ -98,7 +98,7 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 
 def check(scene, sample, seed, result=None) -> dict:
-    from ..check import check_dcrit
+    from .check import check_dcrit
 
     return check_dcrit(scene, sample, seed)
 

@@ -65,13 +65,13 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 
 def summary(ds) -> dict:
-    from ..info import design_summary
+    from ..report.info import design_summary
 
     return design_summary(ds)
 
 
 def report(ds) -> str:
-    from ..info import format_design
+    from ..report.info import format_design
 
     return format_design(ds)
 

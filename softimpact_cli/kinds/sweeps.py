@@ -67,13 +67,13 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 
 def check(scene, sample, seed, result=None) -> dict:
-    from ..check import check_sweep
+    from .check import check_sweep
 
     return check_sweep(scene, sample, seed, result)
 
 
 def summary(ds) -> dict:
-    from ..info import sweep_summary
+    from ..report.info import sweep_summary
 
     return sweep_summary(ds)
 

@@ -37,8 +37,8 @@ def read(sec, ctx) -> TrajectoryAnalysis:
 
 
 def run(scene, progress=None, **_):
+    from ..analysis.engine import Problem
     from ..analysis.trajectory import trajectory_dataset
-    from ..engine import Problem
 
     a = scene.analysis
     return trajectory_dataset(Problem(scene.system, scene.values, scene.integrator), a.state,

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..info import GRID_AXES, grid_dims, grid_point
+from ..report.info import GRID_AXES, grid_dims, grid_point
 from . import (
     DEFAULT_DPI,
     multiple_text,

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..labels import latex_of
+from ..analysis.labels import latex_of
 from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, save, start_text
 from .palette import IMPACTING, SPECIAL, colour_of, solution_order
 

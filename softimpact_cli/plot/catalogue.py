@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..labels import latex_of
+from ..analysis.labels import latex_of
 from . import (
     DEFAULT_DPI,
     new_figure,

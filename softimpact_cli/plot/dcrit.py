@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..labels import latex_of
+from ..analysis.labels import latex_of
 from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, phase_text, pi_ticks, save
 from .palette import colour_of, solution_order
 

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..info import design_summary
-from ..labels import latex_of
+from ..analysis.labels import latex_of
+from ..report.info import design_summary
 from . import (
     DEFAULT_DPI,
     new_figure,

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..info import GRID_AXES
+from ..report.info import GRID_AXES
 from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, pi_ticks, save, start_text
 from .basins import SYMBOLS
 

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..info import grid_dims
-from ..labels import latex_of, parse_label
+from ..analysis.labels import latex_of, parse_label
+from ..report.info import grid_dims
 from . import DEFAULT_DPI, new_figure, parameter_text, pi_ticks, save, start_text
 from .basins import SYMBOLS
 from .palette import IMPACTING, colour_of, solution_order

@@ -5,6 +5,14 @@ chunks on an executor (local pool or Dask) and writes them through the store as 
 finish; at the end it assembles the labelled dataset.
 """
 
-from .runner import prepare_catalogues, run_sweep
-
 __all__ = ["prepare_catalogues", "run_sweep"]
+
+
+def __getattr__(name: str):
+    # the runner imports the analyses and the kernels: only when a sweep runs, so that
+    # the CLI's signal handling (sweep.interrupt) costs no kernel import
+    if name in __all__:
+        from . import runner
+
+        return getattr(runner, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -11,8 +11,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analysis.catalogue import Catalogue, label_orbit
+from ..analysis.engine import KnownOrbits, Problem, RecurrenceCells, classify_state
+from ..analysis.labels import code_of
 from ..config import GRID_AXES, Grid, IntegratorSettings
-from ..engine import KnownOrbits, Problem, RecurrenceCells, classify_state
 from ..kernels.codes import (
     BY_CELLS,
     BY_KNOWN_ORBIT,
@@ -22,7 +23,6 @@ from ..kernels.codes import (
     NO_ORBIT,
     label_code_of_status,
 )
-from ..labels import code_of
 from ..systems import get_system
 
 CAPTURE_MARGIN = 10.0  # d - d_crit must exceed this many capture radii

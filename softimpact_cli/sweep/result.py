@@ -7,8 +7,8 @@ import re
 import numpy as np
 import xarray as xr
 
+from ..analysis.labels import latex_of, name_of
 from ..config import GRID_AXES, GRID_UNITS, Scene
-from ..labels import latex_of, name_of
 from .chunks import RESULT_FIELDS
 
 ATTRIBUTES = {

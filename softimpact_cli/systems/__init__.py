@@ -6,10 +6,12 @@ them to ``REGISTRY`` below; nothing in the kernels changes.
 
 from __future__ import annotations
 
-from ..kernels.numba_cache import stabilise
-from . import bilinear as _bilinear
-from . import duffing as _duffing
-from . import variational as _variational
+from ..kernels.numba_cache import source_keyed_cache, stabilise
+
+with source_keyed_cache():  # every jitted module of the package, imported here
+    from . import bilinear as _bilinear
+    from . import duffing as _duffing
+    from . import variational as _variational
 from .base import COUPLING_PARAMETERS, LAWS, Parameter, Surfaces, System
 from .bilinear import BILINEAR_BODY, BILINEAR_PAIR
 from .duffing import DUFFING_BODY, DUFFING_PAIR

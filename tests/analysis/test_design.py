@@ -15,11 +15,11 @@ from softimpact_cli.analysis.design import (
     phase_grid,
     ranking,
 )
+from softimpact_cli.analysis.engine import Problem, flow
 from softimpact_cli.analysis.stability import wilson_interval
 from softimpact_cli.config import parse_scene
-from softimpact_cli.engine import Problem, flow
-from softimpact_cli.info import design_summary
 from softimpact_cli.kernels.codes import IMPACTING_BASE, UNRESOLVED_LABEL
+from softimpact_cli.report.info import design_summary
 
 # ------------------------------------------------------------------ pure parts
 

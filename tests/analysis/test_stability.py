@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
+from softimpact_cli.analysis.labels import parse_label
 from softimpact_cli.analysis.stability import basin_stability, wilson_interval
 from softimpact_cli.config import parse_scene
-from softimpact_cli.labels import parse_label
 from softimpact_cli.sweep import run_sweep
 
 
@@ -81,7 +81,7 @@ def test_same_seed_same_shares(result, tmp_path):
 
 
 def test_plane_shares_compared_with_4d_stability(result, tmp_path):
-    from softimpact_cli.info import compare_shares
+    from softimpact_cli.report.info import compare_shares
 
     plane = SCENE.replace('kind = "stability"', 'kind = "basins"').replace(
         'kind = "random"\nbox = {x1 = [-12, 12], v1 = [-12, 12], x2 = [-12, 12], v2 = [-12, 12]}'

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from softimpact_cli.engine import Problem
+from softimpact_cli.analysis.engine import Problem
 from softimpact_cli.kernels import layout
 from softimpact_cli.kernels.orbit import new_state
 from softimpact_cli.systems import get_system

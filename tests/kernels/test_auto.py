@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from softimpact_cli.engine import COUNTER_NAMES, classify_state, record_trajectory
+from softimpact_cli.analysis.engine import COUNTER_NAMES, classify_state, record_trajectory
 from softimpact_cli.kernels import auto, dopri5, layout, orbit
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.systems import get_system

@@ -4,8 +4,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from softimpact_cli.analysis.labels import code_of, name_of, parse_label
 from softimpact_cli.kernels import codes
-from softimpact_cli.labels import code_of, name_of, parse_label
 
 STATUSES = (codes.CONVERGED, codes.UNRESOLVED, codes.DIVERGED, codes.STEP_BUDGET,
             codes.TOO_MANY_SWITCHES, codes.STEP_UNDERFLOW)

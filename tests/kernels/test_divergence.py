@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from softimpact_cli.engine import classify_state
+from softimpact_cli.analysis.engine import classify_state
 from softimpact_cli.kernels import rk4
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, STATUS_TABLE, outcome
 

@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from softimpact_cli.engine import Problem, classify_state, record_trajectory
+from softimpact_cli.analysis.engine import Problem, classify_state, record_trajectory
 from softimpact_cli.kernels.codes import CONVERGED, OK
 from softimpact_cli.systems.base import (
     COUPLING_PARAMETERS,

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from softimpact_cli.engine import classify_state, flow
+from softimpact_cli.analysis.engine import classify_state, flow
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, UNRESOLVED, message
 
 from .helpers import BILINEAR_PAIR, DUFFING_PAIR, problem

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from softimpact_cli.engine import classify_state, record_trajectory
+from softimpact_cli.analysis.engine import classify_state, record_trajectory
 from softimpact_cli.kernels.codes import CONVERGED, OK
 
 from .helpers import problem

@@ -9,7 +9,7 @@ import pytest
 
 SCRIPT = """
 import sys
-from softimpact_cli.engine import Problem, classify_state
+from softimpact_cli.analysis.engine import Problem, classify_state
 from softimpact_cli.kernels import orbit
 from softimpact_cli.systems import get_system
 which = sys.argv[1]
@@ -45,7 +45,7 @@ def test_cache_folder_changes_when_any_kernel_source_changes(tmp_path):
     """numba only watches a function's own file; the folder key covers all of them."""
     import shutil
 
-    from softimpact_cli._numba_cache_dir import PACKAGE, SOURCES, source_hash
+    from softimpact_cli.kernels.numba_cache import PACKAGE, SOURCES, source_hash
 
     for folder in SOURCES:
         shutil.copytree(PACKAGE / folder, tmp_path / folder,
@@ -60,10 +60,10 @@ def test_cache_folder_changes_when_any_kernel_source_changes(tmp_path):
 CATALOGUE = """
 import json
 from numba.core import event
-from softimpact_cli import warmup
+from softimpact_cli.analysis import warmup
 from softimpact_cli.analysis.catalogue import body_catalogue, sample_states
 from softimpact_cli.config import IntegratorSettings
-from softimpact_cli.engine import Problem
+from softimpact_cli.analysis.engine import Problem
 from softimpact_cli.systems import get_system
 missing = warmup.missing_kernels("duffing", 1, "dopri5")
 body = get_system("duffing", 1)
@@ -103,3 +103,27 @@ def test_catalogue_in_ten_processes_stops_growing_the_cache(tmp_path):
         assert run["compiled"] == [] and run["missing"] == []
         assert run["multipliers"] == first["multipliers"]
     assert all(s == sizes[0] for s in sizes[1:])
+
+
+def test_every_jitted_function_caches_in_the_source_keyed_folder():
+    """A jitted module not imported inside ``source_keyed_cache`` would cache next to its
+    source and keep stale code after a callee's file changes."""
+    import importlib
+    import pkgutil
+
+    from numba.core.dispatcher import Dispatcher
+
+    from softimpact_cli import kernels, systems
+    from softimpact_cli.kernels.numba_cache import cache_dir
+
+    folder = cache_dir()
+    found, elsewhere = 0, []
+    for package in (kernels, systems):
+        for info in pkgutil.iter_modules(package.__path__):
+            module = importlib.import_module(f"{package.__name__}.{info.name}")
+            for name, obj in vars(module).items():
+                if isinstance(obj, Dispatcher) and obj.py_func.__module__ == module.__name__:
+                    found += 1
+                    if not obj._cache._cache_path.startswith(folder):
+                        elsewhere.append(f"{module.__name__}.{name}")
+    assert found > 40 and elsewhere == []

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from softimpact_cli.engine import record_trajectory
+from softimpact_cli.analysis.engine import record_trajectory
 from softimpact_cli.kernels.codes import OK
 from tests import naive
 

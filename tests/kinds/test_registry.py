@@ -5,13 +5,13 @@ import pytest
 import xarray as xr
 from click.testing import CliRunner
 
-from softimpact_cli.check import check_scene
 from softimpact_cli.cli import main
 from softimpact_cli.config import ConfigError, parse_scene
-from softimpact_cli.examples import example as example_scene
-from softimpact_cli.info import describe
+from softimpact_cli.config.examples import example as example_scene
 from softimpact_cli.kinds import ANALYSIS_KINDS, KINDS, SWEEP_KINDS, AnalysisKind, get
-from softimpact_cli.run import plan_text, run_scene
+from softimpact_cli.kinds.check import check_scene
+from softimpact_cli.kinds.run import plan_text, run_scene
+from softimpact_cli.report.info import describe
 
 
 def test_every_kind_has_a_home_and_sweeps_are_those_without_a_run():

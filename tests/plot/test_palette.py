@@ -1,6 +1,6 @@
 """Colours: distinct within a catalogue, the same for a name in every result of a system."""
 
-from softimpact_cli.labels import Label
+from softimpact_cli.analysis.labels import Label
 from softimpact_cli.plot.palette import DISTINCT, IMPACTING, SPECIAL, colour_of
 
 

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from softimpact_cli.config import parse_scene
-from softimpact_cli.info import describe
-from softimpact_cli.run import run_scene
+from softimpact_cli.kinds.run import run_scene
+from softimpact_cli.report.info import describe
 from softimpact_cli.store import open_result
 from softimpact_cli.sweep import run_sweep
 from softimpact_cli.sweep.result import categorical_attrs, cf_word

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .kernels.codes import CLASSIFIED_BY
-from .kinds import KINDS
+from ..kernels.codes import CLASSIFIED_BY
+from ..kinds import KINDS
 
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "t0_mode",
@@ -154,7 +154,7 @@ def sweep_summary(ds) -> dict:
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)
     status = ds["status"].values
-    from .kernels.codes import STATUS_TABLE
+    from ..kernels.codes import STATUS_TABLE
 
     totals = {"converged": 0, "unresolved": 0, "diverged": 0}
     for code, count in zip(*np.unique(status, return_counts=True), strict=True):
@@ -196,7 +196,7 @@ def incomplete_summary(header, done: int) -> dict:
 
 def stability_summary(ds) -> list[dict]:
     """Per grid point: share and 95% Wilson interval of every group."""
-    from .analysis.stability import basin_stability
+    from ..analysis.stability import basin_stability
 
     bs = basin_stability(ds)
     dims = grid_dims(ds)

@@ -141,7 +141,7 @@ def sweep_kept(out: Path, scene: str, flags: tuple[str, ...] = (),
     ``flags``: the options that change the scene (``--quick``, ``--resolution N``), which
     the resume must repeat; ``before``: ``modified(out)`` when the run started.
     """
-    from .store.sweep_store import SweepStore
+    from ..store.sweep_store import SweepStore
 
     store = SweepStore(out)
     try:

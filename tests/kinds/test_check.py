@@ -7,8 +7,8 @@ import sys
 import numpy as np
 import xarray as xr
 
-from softimpact_cli.check import check_scene, tightened
 from softimpact_cli.config import IntegratorSettings, parse_scene
+from softimpact_cli.kinds.check import check_scene, tightened
 
 SWEEP = """
 [system]
@@ -89,7 +89,7 @@ def test_check_after_a_sweep_compares_the_stored_labels(tmp_path):
 
 
 def test_fail_over_names_the_share_that_exceeds_it():
-    from softimpact_cli.check import over_limit
+    from softimpact_cli.kinds.check import over_limit
 
     report = {"kind": "labels", "changed_share": 0.04, "changed": 2, "sample": 50}
     assert over_limit(report, None) is None and over_limit(report, 0.05) is None
@@ -100,8 +100,8 @@ def test_fail_over_names_the_share_that_exceeds_it():
 def test_check_fail_over_exits_1(monkeypatch, tmp_path):
     from click.testing import CliRunner
 
-    from softimpact_cli import check as check_module
     from softimpact_cli.cli import main
+    from softimpact_cli.kinds import check as check_module
 
     report = {"kind": "labels", "sample": 10, "changed": 3, "changed_share": 0.3,
               "changes": {"A -> B": 3}, "wall_s": 1.0, "tight_wall_s": 2.0, "wall_ratio": 2.0}

@@ -1,10 +1,10 @@
 """Compile the numerical kernels ahead of time, and say so before a run that compiles them.
 
 numba compiles each kernel on first use (minutes on 2 cores) and keeps the machine code
-in a disk cache keyed by the kernel sources (``_numba_cache_dir``); later runs load it in
+in a disk cache keyed by the kernel sources (``kernels.numba_cache``); later runs load it in
 a fraction of a second. :func:`announce_compilation` prints one line on stderr when the
 cache lacks a kernel the scene needs, so that the first run is not silent;
-:func:`compile_all` (``python -m softimpact_cli.warmup``, run by ``make install``) runs a
+:func:`compile_all` (``python -m softimpact_cli.analysis.warmup``, run by ``make install``) runs a
 tiny problem through every kernel signature the command line uses, so that no run compiles.
 
 The test is cheap (a few ``stat`` calls) and exact for a fresh cache: numba writes one
@@ -42,8 +42,8 @@ def _index_path(dispatcher) -> Path | None:
 def _scene_kernels(model: str, bodies: int, method: str, catalogue: bool) -> list:
     """The jitted functions a run of (model, bodies) with ``method`` calls first: the
     trajectory kernels, the method, the system, and the catalogue's variational equations."""
-    from .kernels import METHODS, orbit
-    from .systems import get_system, variational
+    from ..kernels import METHODS, orbit
+    from ..systems import get_system, variational
 
     system = get_system(model, bodies)
     kernels = [orbit.classify_near, orbit.record, METHODS[method].advance, system.rhs]
@@ -67,7 +67,7 @@ def missing_kernels(model: str = "duffing", bodies: int = 2, method: str = "auto
 
 def cache_folder() -> Path | None:
     """The folder of this source version's compiled kernels (None without a disk cache)."""
-    from .kernels import orbit
+    from ..kernels import orbit
 
     path = _index_path(orbit.classify_near)
     return path.parent.parent if path is not None else None
@@ -111,12 +111,12 @@ def _steps(model: str | None = None) -> list:
     one model (None: all)."""
     import numpy as np
 
-    from .analysis.catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
-    from .config import IntegratorSettings
+    from ..config import IntegratorSettings
+    from ..kernels import METHODS
+    from ..systems import REGISTRY
+    from .catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
     from .engine import Problem, RecurrenceCells, classify_state, flow, record_trajectory
-    from .kernels import METHODS
     from .step_stability import rk4_step_warning
-    from .systems import REGISTRY
 
     def run_system(system, method):
         problem = Problem(system, system.defaults(),
@@ -169,7 +169,7 @@ def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]
     they did not save (two processes updating one index file at the same moment can lose
     an entry). The second pass takes seconds.
     """
-    from .systems import MODELS
+    from ..systems import MODELS
 
     workers = min(workers or os.cpu_count() or 1, len(MODELS))
     done = []
@@ -184,7 +184,7 @@ def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m softimpact_cli.warmup``: compile every kernel into the disk cache."""
+    """``python -m softimpact_cli.analysis.warmup``: compile every kernel into the disk cache."""
     quiet = "-q" in (argv if argv is not None else sys.argv[1:])
     folder = cache_folder()
     if not quiet:
@@ -199,6 +199,6 @@ def main(argv: list[str] | None = None) -> int:
 
 if __name__ == "__main__":
     # run the imported module's main, so that the worker processes find its functions
-    from softimpact_cli.warmup import main as _main
+    from softimpact_cli.analysis.warmup import main as _main
 
     sys.exit(_main())

@@ -1,6 +1,6 @@
 """``softimpact info`` as readable text: what applies to the result's kind, as tables.
 
-Works on the dict of :func:`softimpact_cli.info.describe` (or ``incomplete_summary``)
+Works on the dict of :func:`softimpact_cli.report.info.describe` (or ``incomplete_summary``)
 and the dataset; never prints a Python repr.
 """
 

@@ -5,7 +5,7 @@ import time
 import numpy as np
 
 from softimpact_cli.kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
-from softimpact_cli.progress import ProgressLines, duration, interval_s
+from softimpact_cli.report.progress import ProgressLines, duration, interval_s
 
 
 def test_lines_count_unresolved_and_end_with_the_total():

@@ -4,7 +4,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from softimpact_cli.labels import Label, latex_of, n_shifts, parse_label, shift
+from softimpact_cli.analysis.labels import Label, latex_of, n_shifts, parse_label, shift
 
 periods = st.integers(1, 40)
 
@@ -55,7 +55,7 @@ def test_bad_labels(bad):
 
 @given(st.sampled_from(["impacting", "unmatched"]), st.integers(1, 999))
 def test_codes_round_trip(kind, p):
-    from softimpact_cli.labels import code_of, name_of
+    from softimpact_cli.analysis.labels import code_of, name_of
 
     names = ("L1^1 R1-0^1", "L1^1 R1-0^2")
     label = Label(kind, p)
@@ -63,7 +63,7 @@ def test_codes_round_trip(kind, p):
 
 
 def test_catalogue_codes_follow_catalogue_order():
-    from softimpact_cli.labels import code_of, name_of
+    from softimpact_cli.analysis.labels import code_of, name_of
 
     names = ("L2^1 R2-0^1", "L2^1 R2-1^1", "L2^1 R5-0^2")
     for i, n in enumerate(names):

@@ -6,12 +6,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from softimpact_cli.analysis.labels import parse_label
 from softimpact_cli.config import load_scene, quick
-from softimpact_cli.labels import parse_label
-from softimpact_cli.run import run_scene
+from softimpact_cli.kinds.run import run_scene
 from softimpact_cli.sweep import run_sweep
 
-FIGURES = Path(__file__).parents[1] / "configs" / "figures"
+FIGURES = Path(__file__).parents[2] / "configs" / "figures"
 BASIN_SCENES = sorted(p.name for p in FIGURES.glob("*.toml")
                       if load_scene(p).analysis.kind == "basins")
 DCRIT_SCENES = sorted(p.name for p in FIGURES.glob("*.toml")

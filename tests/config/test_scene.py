@@ -103,7 +103,7 @@ def test_missing_file(tmp_path):
 def test_example_scenes_are_valid():
     from pathlib import Path
 
-    for path in sorted(Path(__file__).parents[1].joinpath("configs").glob("*.toml")):
+    for path in sorted(Path(__file__).parents[2].joinpath("configs").glob("*.toml")):
         load_scene(path)
 
 
@@ -202,7 +202,7 @@ def test_sizes_are_bounded_before_allocating(name):
 
 
 def test_design_sample_count_is_bounded():
-    text = (Path(__file__).parents[1] / "configs" / "design_duffing.toml").read_text()
+    text = (Path(__file__).parents[2] / "configs" / "design_duffing.toml").read_text()
     with pytest.raises(ConfigError, match=r"\[initial_conditions\] n: must be in 1..10000000"):
         parse_scene(text.replace("n = 1000\n", "n = 1000000000\n"), "d.toml")
     with pytest.raises(ConfigError, match="at most 10000000"):  # 100000 x 10**6 screened
@@ -223,7 +223,7 @@ def test_output_path_with_trailing_slash_is_a_directory():
 
 
 def test_every_shipped_scene_parses():
-    root = Path(__file__).parents[1] / "configs"
+    root = Path(__file__).parents[2] / "configs"
     scenes = sorted(root.glob("*.toml")) + sorted(root.glob("figures/*.toml"))
     assert len(scenes) >= 20
     for path in scenes:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
+from ..kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
 
 THRESHOLD = 0.05  # a share of unresolved (or diverged) trajectories worth a warning
 STRICT_STATUS = 3  # exit status of --strict when a warning applies (result written)

@@ -5,9 +5,9 @@ import re
 
 import numpy as np
 
+from softimpact_cli.analysis.engine import Problem, classify_state
+from softimpact_cli.analysis.step_stability import largest_stable_step, rk4_step_warning
 from softimpact_cli.config import IntegratorSettings
-from softimpact_cli.engine import Problem, classify_state
-from softimpact_cli.step_stability import largest_stable_step, rk4_step_warning
 from softimpact_cli.systems import get_system
 
 STIFF = dict(c=0.05, k1=1.0, k2=0.01, F=1.0, w=1.3, d=1.0, phi=math.pi, k_c=1e6, c_c=1e3,

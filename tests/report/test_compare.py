@@ -9,11 +9,10 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.compare import compare_results, limits_exceeded
 from softimpact_cli.config import ConfigError
+from softimpact_cli.report.compare import compare_results, limits_exceeded
 from softimpact_cli.store import open_result, write_result
-
-from .test_kinds import SCENES
+from tests.kinds.test_kinds import SCENES
 
 
 def run(*args):

@@ -6,7 +6,7 @@ import signal
 import subprocess
 import sys
 
-from softimpact_cli import warmup
+from softimpact_cli.analysis import warmup
 from softimpact_cli.kernels import METHODS
 from softimpact_cli.systems import REGISTRY
 
@@ -74,7 +74,7 @@ def test_warm_up_covers_every_system_and_method():
 def test_missing_kernels_are_named_by_module(tmp_path):
     """On an empty cache every kernel a run needs is missing, the method's included."""
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
-    code = ("from softimpact_cli import warmup; "
+    code = ("from softimpact_cli.analysis import warmup; "
             "print(' '.join(warmup.missing_kernels('bilinear', 2, 'rodas4')))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env=env, check=True).stdout.split()

@@ -18,7 +18,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
+from ..kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
 
 INTERVAL_ENV = "SOFTIMPACT_PROGRESS_INTERVAL"
 DEFAULT_INTERVAL_S = 30.0
@@ -105,7 +105,7 @@ class ProgressLines:
         return ", ".join(parts)
 
     def _run(self) -> None:
-        from .interrupt import received
+        from ..sweep.interrupt import received
 
         # an interrupted run is being cleaned up: its last line would only repeat itself
         while not self._stop.wait(self.interval) and received() is None:

@@ -6,8 +6,8 @@ import time
 
 import xarray as xr
 
-from .config import Scene
-from .kinds import get as kind_of
+from ..config import Scene
+from . import get as kind_of
 
 
 def run_scene(scene: Scene, progress=None, **options) -> xr.Dataset:
@@ -18,7 +18,7 @@ def run_scene(scene: Scene, progress=None, **options) -> xr.Dataset:
     done (the CLI passes a tqdm bar); analyses never print. ``options`` (workers,
     scheduler, echo) go to the kinds that take them.
     """
-    from .store import provenance
+    from ..store import provenance
 
     kind = kind_of(scene.analysis.kind)
     if kind.sweep:

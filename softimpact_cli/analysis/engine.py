@@ -13,10 +13,10 @@ from typing import Any
 
 import numpy as np
 
-from .config import IntegratorSettings
-from .kernels import METHODS, cells, layout, orbit
-from .kernels.codes import CONVERGED, MIXED_CELL, NO_ORBIT, outcome
-from .systems import Surfaces, System
+from ..config import IntegratorSettings
+from ..kernels import METHODS, cells, layout, orbit
+from ..kernels.codes import CONVERGED, MIXED_CELL, NO_ORBIT, outcome
+from ..systems import Surfaces, System
 
 # istate[:layout.N_COUNTERS]; "stiff_steps" are the Rodas4 steps (the others explicit),
 # "method_switches" the changes of method within `auto`

@@ -23,7 +23,7 @@ import re
 from dataclasses import dataclass
 from math import gcd
 
-from .kernels.codes import (
+from ..kernels.codes import (
     DIVERGED_LABEL,
     IMPACTING_BASE,
     PENDING,

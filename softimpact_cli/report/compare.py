@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .config import GRID_AXES, ConfigError
+from ..config import GRID_AXES, ConfigError
 from .info import grid_dims, grid_point
 
 SWEEP_KINDS = ("basins", "stability", "map")
@@ -68,7 +68,7 @@ def _names(ds, dims: list[str]) -> np.ndarray:
 
 def compare_sweeps(a, b, name_a: str, name_b: str) -> dict:
     """Label agreement point by point and share differences per solution and grid point."""
-    from .analysis.stability import wilson_interval
+    from ..analysis.stability import wilson_interval
 
     _same(list(grid_dims(a)), list(grid_dims(b)), "grid layout", name_a, name_b)
     for axis in GRID_AXES:

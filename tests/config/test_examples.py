@@ -5,8 +5,8 @@ from click.testing import CliRunner
 
 from softimpact_cli.cli import main
 from softimpact_cli.config import ANALYSIS_KINDS, parse_scene
-from softimpact_cli.examples import EXAMPLES, example
-from softimpact_cli.run import run_scene
+from softimpact_cli.config.examples import EXAMPLES, example
+from softimpact_cli.kinds.run import run_scene
 
 
 def test_every_analysis_kind_has_an_example():

@@ -15,7 +15,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .config import IntegratorSettings, Scene
+from ..config import IntegratorSettings, Scene
 
 
 def tightened(s: IntegratorSettings) -> IntegratorSettings:
@@ -32,7 +32,7 @@ def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> 
     scene's settings (so that what depends on the order of a run, recurrence cells, is
     checked as it ran) and its wall time per trajectory for their cost.
     """
-    from .kinds import ANALYSIS_KINDS, KINDS
+    from . import ANALYSIS_KINDS, KINDS
 
     kind = KINDS[scene.analysis.kind]
     if kind.check is None:
@@ -42,9 +42,9 @@ def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> 
 
 
 def check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
-    from .labels import name_of
-    from .sweep.chunks import run_chunk
-    from .sweep.runner import prepare_catalogues, sweep_context
+    from ..analysis.labels import name_of
+    from ..sweep.chunks import run_chunk
+    from ..sweep.runner import prepare_catalogues, sweep_context
 
     catalogues, names = prepare_catalogues(scene)
     ic = scene.initial_conditions
@@ -77,8 +77,8 @@ def check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
 
 
 def check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
-    from .analysis import critical_distance as cd
-    from .analysis.catalogue import scene_catalogue
+    from ..analysis import critical_distance as cd
+    from ..analysis.catalogue import scene_catalogue
 
     cat = scene_catalogue(scene)
     rng = np.random.default_rng(seed)
@@ -97,7 +97,7 @@ def check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
 
 
 def check_bifurcation(scene: Scene) -> dict:
-    from .kinds.bifurcation import run as bifurcation_result
+    from .bifurcation import run as bifurcation_result
 
     start = time.perf_counter()
     a = bifurcation_result(scene)

@@ -4,7 +4,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from softimpact_cli.expressions import format_multiple, parse_multiple, parse_phase
+from softimpact_cli.config.expressions import format_multiple, parse_multiple, parse_phase
 
 
 @pytest.mark.parametrize(
