@@ -10,7 +10,6 @@ from hypothesis import strategies as st
 from softimpact_cli.kernels.switching import mode_of
 from softimpact_cli.systems import get_system
 from tests import naive
-
 from tests.kernels.helpers import BILINEAR_BODY, BILINEAR_PAIR, DUFFING_BODY, DUFFING_PAIR
 
 RNG_SEED = 20240611
