@@ -75,6 +75,14 @@ class AnalysisKind:
     summary(ds) -> dict : the kind's part of ``info``
     after_sweep(ds, scene, catalogue) -> Dataset : a sweep kind's extra variables
     report(ds) -> str : what the CLI prints after a run besides the one-line outcome
+    info_lines(ds) -> list[str] : lines of ``info`` that only this kind prints (at the top)
+    info_catalogue : ``info`` lists the result's catalogue (a design prints its own)
+    outcome_counts(ds) -> (trajectories, unresolved, diverged) or None : for the warnings
+        on mostly unresolved or diverged results (None: the kind has no such counts)
+    compare(a, b, name_a, name_b) -> dict, compare_text(report, max_points) -> list[str] :
+        ``softimpact compare`` of two results of this kind (None: not comparable)
+    needs_attractors : the sweep stops before any chunk when the catalogue is empty
+    searches_attractors : runs the attractor search without a [catalogue] section
     """
 
     name: str
@@ -88,6 +96,13 @@ class AnalysisKind:
     summary: Callable[[Any], dict] | None = None
     after_sweep: Callable[..., Any] | None = None
     report: Callable[[Any], str] | None = None
+    info_lines: Callable[[Any], list[str]] | None = None
+    outcome_counts: Callable[[Any], tuple[int, int, int] | None] | None = None
+    compare: Callable[..., dict] | None = None
+    compare_text: Callable[[dict, int], list[str]] | None = None
+    info_catalogue: bool = True
+    needs_attractors: bool = False
+    searches_attractors: bool = False
     progress_unit: str = "steps"
     options: tuple[str, ...] = field(default=())  # run options it takes (workers, ...)
 

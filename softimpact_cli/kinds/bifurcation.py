@@ -107,6 +107,26 @@ def check(scene, sample, seed, result=None) -> dict:
     return check_bifurcation(scene)
 
 
+def info_lines(ds) -> list[str]:
+    if "d" not in ds.coords:
+        return []
+    d = ds["d"].values
+    return [f"{'d':28s} {d[0]:.6g} -> {d[-1]:.6g} ({d.size} steps)"]
+
+
+def compare(a, b, name_a: str, name_b: str) -> dict:
+    from ..report.compare import compare_bifurcations
+
+    return compare_bifurcations(a, b)
+
+
+def compare_text(report: dict, max_points: int) -> list[str]:
+    from ..report.compare import bifurcation_comparison_text
+
+    return bifurcation_comparison_text(report)
+
+
 KINDS = (AnalysisKind("bifurcation", "each solution followed along d, destruction points "
                       "located", read, plan, sections=sections, shrink=shrink, run=run,
-                      check=check, progress_unit="branches"),)
+                      check=check, info_lines=info_lines, compare=compare,
+                      compare_text=compare_text, progress_unit="branches"),)

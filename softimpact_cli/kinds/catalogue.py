@@ -74,4 +74,4 @@ def report(ds) -> str:
 
 KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
                       read, plan, run=run, summary=summary, report=report,
-                      progress_unit="initial conditions"),)
+                      searches_attractors=True, progress_unit="initial conditions"),)

@@ -103,6 +103,18 @@ def check(scene, sample, seed, result=None) -> dict:
     return check_dcrit(scene, sample, seed)
 
 
+def compare(a, b, name_a: str, name_b: str) -> dict:
+    from ..report.compare import compare_dcrit
+
+    return compare_dcrit(a, b, name_a, name_b)
+
+
+def compare_text(report: dict, max_points: int) -> list[str]:
+    from ..report.compare import dcrit_comparison_text
+
+    return dcrit_comparison_text(report)
+
+
 KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
                       plan, sections=sections, shrink=shrink, run=run, check=check,
-                      progress_unit="phases"),)
+                      compare=compare, compare_text=compare_text, progress_unit="phases"),)

@@ -76,7 +76,18 @@ def report(ds) -> str:
     return format_design(ds)
 
 
+def info_lines(ds) -> list[str]:
+    return [report(ds)]
+
+
+def outcome_counts(ds):
+    from ..report.outcomes import design_counts
+
+    return design_counts(ds)
+
+
 KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target survives (see "
                       "design)", read, plan, sections=sections, run=run, summary=summary,
-                      report=report, progress_unit="trajectories",
+                      report=report, info_lines=info_lines, info_catalogue=False,
+                      outcome_counts=outcome_counts, progress_unit="trajectories",
                       options=("workers", "scheduler", "echo")),)

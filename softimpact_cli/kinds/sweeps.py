@@ -78,6 +78,30 @@ def summary(ds) -> dict:
     return sweep_summary(ds)
 
 
+def stability_summary(ds) -> dict:
+    from ..report.info import stability_summary as shares
+
+    return {**summary(ds), "stability": shares(ds)}
+
+
+def outcome_counts(ds):
+    from ..report.outcomes import label_counts
+
+    return label_counts(ds)
+
+
+def compare(a, b, name_a: str, name_b: str) -> dict:
+    from ..report.compare import compare_sweeps
+
+    return compare_sweeps(a, b, name_a, name_b)
+
+
+def compare_text(report: dict, max_points: int) -> list[str]:
+    from ..report.compare import sweep_comparison_text
+
+    return sweep_comparison_text(report, max_points)
+
+
 def map_counts(ds, scene, catalogue):
     """The map's predicted and found numbers of coexisting solutions at each point."""
     from ..analysis.maps import add_map_counts
@@ -87,9 +111,15 @@ def map_counts(ds, scene, catalogue):
 
 KINDS = tuple(
     AnalysisKind(name, description, _reader(name), plan, sections=sections, shrink=shrink,
-                 check=check, summary=summary, after_sweep=after, progress_unit="trajectories")
-    for name, description, after in (
-        ("basins", "the label of every start on a plane, at every [grid] point", None),
-        ("stability", "basin stability: shares of random starts, 95% Wilson intervals", None),
-        ("map", "coexisting solutions over two parameters, predicted and found", map_counts),
+                 check=check, summary=summarise, after_sweep=after,
+                 outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
+                 needs_attractors=name == "map",  # its counts need d_crit
+                 progress_unit="trajectories")
+    for name, description, summarise, after in (
+        ("basins", "the label of every start on a plane, at every [grid] point", summary,
+         None),
+        ("stability", "basin stability: shares of random starts, 95% Wilson intervals",
+         stability_summary, None),
+        ("map", "coexisting solutions over two parameters, predicted and found", summary,
+         map_counts),
     ))

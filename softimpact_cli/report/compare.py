@@ -15,8 +15,12 @@ import numpy as np
 from ..config import GRID_AXES, ConfigError
 from .info import grid_dims, grid_point
 
-SWEEP_KINDS = ("basins", "stability", "map")
-COMPARABLE = (*SWEEP_KINDS, "dcrit", "bifurcation")
+
+def comparable() -> tuple[str, ...]:
+    """The kinds compare takes (those the registry gives a ``compare``)."""
+    from ..kinds import KINDS
+
+    return tuple(name for name, kind in KINDS.items() if kind.compare is not None)
 
 
 def compare_results(a, b, name_a: str = "A", name_b: str = "B") -> dict:
@@ -25,10 +29,12 @@ def compare_results(a, b, name_a: str = "A", name_b: str = "B") -> dict:
     ConfigError (one line) when the two cannot be compared: another analysis kind, a
     kind compare does not take, or another grid, phase set or set of initial conditions.
     """
+    from ..kinds import KINDS
+
     kind_a, kind_b = a.attrs.get("analysis"), b.attrs.get("analysis")
-    if kind_a not in COMPARABLE:
+    if kind_a not in comparable():
         raise ConfigError(f"{name_a}: holds a {kind_a} result; compare takes "
-                          f"{', '.join(COMPARABLE)} results")
+                          f"{', '.join(comparable())} results")
     if kind_b != kind_a:
         raise ConfigError(f"{name_b}: holds a {kind_b} result, {name_a} a {kind_a} result; "
                           "compare needs two results of the same kind")
@@ -36,12 +42,7 @@ def compare_results(a, b, name_a: str = "A", name_b: str = "B") -> dict:
         if int(ds.attrs.get("complete", 1)) != 1:
             raise ConfigError(f"{name}: is incomplete; finish it with --resume first")
     report = {"analysis": kind_a, "a": name_a, "b": name_b}
-    if kind_a in SWEEP_KINDS:
-        report.update(compare_sweeps(a, b, name_a, name_b))
-    elif kind_a == "dcrit":
-        report.update(compare_dcrit(a, b, name_a, name_b))
-    else:
-        report.update(compare_bifurcations(a, b))
+    report.update(KINDS[kind_a].compare(a, b, name_a, name_b))
     return report
 
 
@@ -186,46 +187,62 @@ def limits_exceeded(report: dict, max_label_change: float | None = None,
 
 def format_comparison(report: dict, max_points: int = 20) -> str:
     """The report as plain text."""
+    from ..kinds import KINDS
+
     head = f"{report['analysis']}: {report['b']} against {report['a']}"
-    lines = [head]
-    if report["analysis"] in SWEEP_KINDS:
-        if report["label_changed"] == 0:
-            lines.append(f"labels: identical ({report['trajectories']} trajectories)")
-        else:
-            lines.append(f"labels: {report['label_changed']} of {report['trajectories']} "
-                         f"changed ({100 * report['label_change_share']:.2f}%)")
-            for change, count in sorted(report["changes"].items(), key=lambda kv: -kv[1]):
-                lines.append(f"  {change}: {count}")
-        lines.append(f"largest share change at a grid point: {report['max_share_change']:.4f}")
-        width = max([len(s) for p in report["points"] for s in p["shares"]] + [8])
-        for point in report["points"][:max_points]:
-            where = ", ".join(f"{k}={point[k]:.6g}" if isinstance(point[k], float)
-                              else f"{k}={point[k]}" for k in GRID_AXES)
-            lines.append(f"{where} ({point['n']} trajectories)")
-            lines.append(f"  {'solution':{width}s} {'A':>6s} {'95% interval':>15s} "
-                         f"{'B':>6s} {'95% interval':>15s} {'B - A':>7s}")
-            for s, r in point["shares"].items():
-                lines.append(f"  {s:{width}s} {r['a']:6.3f} [{r['a_ci95'][0]:.3f}, "
-                             f"{r['a_ci95'][1]:.3f}] {r['b']:6.3f} [{r['b_ci95'][0]:.3f}, "
-                             f"{r['b_ci95'][1]:.3f}] {r['change']:+7.3f}")
-        if len(report["points"]) > max_points:
-            lines.append(f"... {len(report['points']) - max_points} more grid points "
-                         "(--json lists all)")
-    elif report["analysis"] == "dcrit":
-        lines.append(f"largest d_crit change: {report['max_d_change']:.4g}")
-        lines.append(f"  {'combination':16s} {'max |B - A|':>12s} {'at phi':>8s}")
-        for name, r in report["combinations"].items():
-            if "in" in r:
-                lines.append(f"  {name:16s} only in {r['in']}")
-            else:
-                lines.append(f"  {name:16s} {r['max_change']:12.4g} {r['at_phi']:8.4f}")
+    return "\n".join([head, *KINDS[report["analysis"]].compare_text(report, max_points)])
+
+
+def sweep_comparison_text(report: dict, max_points: int) -> list[str]:
+    """Labels changed, then the shares per grid point with their intervals."""
+    lines = []
+    if report["label_changed"] == 0:
+        lines.append(f"labels: identical ({report['trajectories']} trajectories)")
     else:
-        lines.append(f"largest change of a destruction point: {report['max_d_change']:.4g}")
-        lines.append(f"  {'branch':16s} {'A: destroyed at d':>18s} {'B':>10s} {'B - A':>10s}")
-        for name, r in report["branches"].items():
-            def at(v):
-                return "-" if v is None else ("never" if not np.isfinite(v) else f"{v:.4g}")
-            change = r.get("change", "branch in one only")
-            change = f"{change:+.4g}" if isinstance(change, float) else change
-            lines.append(f"  {name:16s} {at(r['a']):>18s} {at(r['b']):>10s} {change:>10s}")
-    return "\n".join(lines)
+        lines.append(f"labels: {report['label_changed']} of {report['trajectories']} "
+                     f"changed ({100 * report['label_change_share']:.2f}%)")
+        for change, count in sorted(report["changes"].items(), key=lambda kv: -kv[1]):
+            lines.append(f"  {change}: {count}")
+    lines.append(f"largest share change at a grid point: {report['max_share_change']:.4f}")
+    width = max([len(s) for p in report["points"] for s in p["shares"]] + [8])
+    for point in report["points"][:max_points]:
+        where = ", ".join(f"{k}={point[k]:.6g}" if isinstance(point[k], float)
+                          else f"{k}={point[k]}" for k in GRID_AXES)
+        lines.append(f"{where} ({point['n']} trajectories)")
+        lines.append(f"  {'solution':{width}s} {'A':>6s} {'95% interval':>15s} "
+                     f"{'B':>6s} {'95% interval':>15s} {'B - A':>7s}")
+        for s, r in point["shares"].items():
+            lines.append(f"  {s:{width}s} {r['a']:6.3f} [{r['a_ci95'][0]:.3f}, "
+                         f"{r['a_ci95'][1]:.3f}] {r['b']:6.3f} [{r['b_ci95'][0]:.3f}, "
+                         f"{r['b_ci95'][1]:.3f}] {r['change']:+7.3f}")
+    if len(report["points"]) > max_points:
+        lines.append(f"... {len(report['points']) - max_points} more grid points "
+                     "(--json lists all)")
+    return lines
+
+
+def dcrit_comparison_text(report: dict) -> list[str]:
+    """The largest d_crit change per combination."""
+    lines = [f"largest d_crit change: {report['max_d_change']:.4g}",
+             f"  {'combination':16s} {'max |B - A|':>12s} {'at phi':>8s}"]
+    for name, r in report["combinations"].items():
+        if "in" in r:
+            lines.append(f"  {name:16s} only in {r['in']}")
+        else:
+            lines.append(f"  {name:16s} {r['max_change']:12.4g} {r['at_phi']:8.4f}")
+    return lines
+
+
+def bifurcation_comparison_text(report: dict) -> list[str]:
+    """The destruction point of each branch in both results."""
+    lines = [f"largest change of a destruction point: {report['max_d_change']:.4g}",
+             f"  {'branch':16s} {'A: destroyed at d':>18s} {'B':>10s} {'B - A':>10s}"]
+
+    def at(v):
+        return "-" if v is None else ("never" if not np.isfinite(v) else f"{v:.4g}")
+
+    for name, r in report["branches"].items():
+        change = r.get("change", "branch in one only")
+        change = f"{change:+.4g}" if isinstance(change, float) else change
+        lines.append(f"  {name:16s} {at(r['a']):>18s} {at(r['b']):>10s} {change:>10s}")
+    return lines

@@ -160,8 +160,6 @@ def sweep_summary(ds) -> dict:
     for code, count in zip(*np.unique(status, return_counts=True), strict=True):
         totals[STATUS_TABLE[int(code)][0]] += int(count)
     out = {}
-    if ds.attrs.get("analysis") == "stability":
-        out["stability"] = stability_summary(ds)
     if "predicted_count" in ds:
         for k, index in enumerate(np.ndindex(*grid_shape)):
             sel = dict(zip(grid_dims(ds), index, strict=True))

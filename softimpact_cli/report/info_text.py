@@ -57,17 +57,19 @@ def _where(point: dict) -> str:
 
 def format_summary(summary: dict, ds, max_points: int = 50) -> str:
     """The whole ``info`` text of a result (``summary`` from ``describe``)."""
-    from .info import format_catalogue, format_design
+    from ..kinds import KINDS
+    from .info import format_catalogue
 
-    kind = summary.get("analysis")
+    kind_name = summary.get("analysis")
+    kind = KINDS.get(str(kind_name))
     lines = []
     if "progress" in summary:  # an unfinished sweep
         p = summary["progress"]
-        lines.append(f"{kind}: incomplete, {p['chunks_done']} of {p['chunks']} chunks done "
+        lines.append(f"{kind_name}: incomplete, {p['chunks_done']} of {p['chunks']} chunks done "
                      f"({100 * p['fraction']:.0f}%); finish with "
                      f"softimpact sweep {summary.get('scene_source')} -o RESULT --resume")
-    if kind == "design":
-        lines.append(format_design(ds))
+    if kind is not None and kind.info_lines is not None:
+        lines += kind.info_lines(ds)
     first = {k: summary[k] for k in ("analysis", "model", "bodies") if k in summary}
     for key, value in {**first, **summary}.items():
         if key in SHOWN_ELSEWHERE or key == "progress":
@@ -78,17 +80,14 @@ def format_summary(summary: dict, ds, max_points: int = 50) -> str:
             value = _parameters(summary, ds)
         elif key == "wall_s":
             value = f"{value:.2f} s" if isinstance(value, float) else value
-        elif key == "steps_by_method" and kind == "trajectory":
-            value = "; ".join(f"{phase}: {text(v)}" for phase, v in value.items())
+        elif key == "steps_by_method" and all(isinstance(v, dict) for v in value.values()):
+            value = "; ".join(f"{phase}: {text(v)}" for phase, v in value.items())  # per phase
         lines.append(f"{key:28s} {text(value)}")
-    if kind == "bifurcation" and "d" in ds.coords:
-        d = ds["d"].values
-        lines.append(f"{'d':28s} {d[0]:.6g} -> {d[-1]:.6g} ({d.size} steps)")
     if "orbit" in summary:
         lines.append(f"orbit: {len(summary['orbit'])} section point(s) of "
                      f"({', '.join(summary['variables'])})")
         lines += [f"  {'  '.join(f'{x:+.6f}' for x in row)}" for row in summary["orbit"]]
-    if "attractor" in ds.dims and kind != "design":
+    if "attractor" in ds.dims and (kind is None or kind.info_catalogue):
         lines.append("catalogue:")
         lines += [f"  {line}" for line in format_catalogue(ds).splitlines()]
     if "branches" in summary:

@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from ..kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
+from ..kinds import KINDS
 
 THRESHOLD = 0.05  # a share of unresolved (or diverged) trajectories worth a warning
 STRICT_STATUS = 3  # exit status of --strict when a warning applies (result written)
@@ -19,22 +20,35 @@ STRICT_STATUS = 3  # exit status of --strict when a warning applies (result writ
 
 def _shares(ds: xr.Dataset) -> tuple[int, int, int] | None:
     """(trajectories, unresolved, diverged) of the result, or None if it has none."""
-    if "label" in ds.data_vars and ds.attrs.get("analysis") in ("basins", "stability", "map"):
-        codes = ds["label"].values
-        return (codes.size, int(np.count_nonzero(codes == UNRESOLVED_LABEL)),
-                int(np.count_nonzero(codes == DIVERGED_LABEL)))
-    if ds.attrs.get("analysis") == "design" and "count" in ds.data_vars:
-        ranked = ds["rank"].values >= 0  # the verified points (on the full sample)
-        if not ranked.any():
-            return None
-        groups = [str(g) for g in ds["group"].values]
-        counts = ds["count"].values[ranked]
+    kind = KINDS.get(str(ds.attrs.get("analysis")))
+    if kind is None or kind.outcome_counts is None:
+        return None
+    return kind.outcome_counts(ds)
 
-        def total(name: str) -> int:
-            return int(counts[:, groups.index(name)].sum()) if name in groups else 0
 
-        return int(ds["n_samples"].values[ranked].sum()), total("unresolved"), total("diverged")
-    return None
+def label_counts(ds: xr.Dataset) -> tuple[int, int, int] | None:
+    """A sweep's counts: its label codes."""
+    if "label" not in ds.data_vars:
+        return None
+    codes = ds["label"].values
+    return (codes.size, int(np.count_nonzero(codes == UNRESOLVED_LABEL)),
+            int(np.count_nonzero(codes == DIVERGED_LABEL)))
+
+
+def design_counts(ds: xr.Dataset) -> tuple[int, int, int] | None:
+    """A design's counts: its verified points' samples (rank >= 0, on the full sample)."""
+    if "count" not in ds.data_vars:
+        return None
+    ranked = ds["rank"].values >= 0
+    if not ranked.any():
+        return None
+    groups = [str(g) for g in ds["group"].values]
+    counts = ds["count"].values[ranked]
+
+    def total(name: str) -> int:
+        return int(counts[:, groups.index(name)].sum()) if name in groups else 0
+
+    return int(ds["n_samples"].values[ranked].sum()), total("unresolved"), total("diverged")
 
 
 def outcome_warnings(ds: xr.Dataset, max_periods: int, threshold: float = THRESHOLD

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..config import ConfigError, Scene
+from ..kinds import get as kind_of
 
 # bytes per trajectory of the per-trajectory variables (label, status, period, periods_used,
 # contacts, max_penetration, captured, steps, stiff_steps: chunks.RESULT_FIELDS)
@@ -66,8 +67,8 @@ class Plan:
         else:  # sample index, initial_state, per-sample t0
             total += 8 * self.n_ic * (2 + dim)
         total += 8 * LABELS_ESTIMATE * grid.size * sc.integrator.max_orbit_period * dim
-        if sc.analysis.kind == "map":  # predicted, found, found_nonimpacting per point
-            total += 3 * 8 * grid.size
+        if kind_of(sc.analysis.kind).after_sweep is not None:  # per-point variables
+            total += 3 * 8 * grid.size  # (the map's predicted, found, found_nonimpacting)
         return total
 
     def describe(self) -> str:

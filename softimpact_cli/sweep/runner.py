@@ -227,8 +227,9 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     echo(f"executor: {executor.describe()}")
 
     catalogues, names = prepare_catalogues(scene)
-    if scene.analysis.kind == "map":  # counts need d_crit: stop before any chunk or file
-        require_attractors(next(iter(catalogues.values())), "map", str(scene.source))
+    if kind_of(scene.analysis.kind).needs_attractors:  # stop before any chunk or file
+        require_attractors(next(iter(catalogues.values())), scene.analysis.kind,
+                           str(scene.source))
     echo(f"catalogue: {len(names)} solutions: {', '.join(names)}" if names else
          "catalogue: no non-impacting solution found (every label will be impacting, "
          "unresolved or diverged)")

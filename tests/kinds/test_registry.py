@@ -95,3 +95,33 @@ def test_sweep_kinds_refuse_resume_for_the_others(tmp_path):
     assert result.exit_code == 2
     assert "--resume is for sweeps (kinds basins, stability, map); a trajectory reruns " \
            "whole" in result.output
+
+
+# Kind-specific guards of commands that exist for one kind only (`softimpact design`,
+# `design --target`, the design example's header, `info --compare` of a basins result
+# with a stability result); everything else asks the registry.
+ALLOWED_KIND_TESTS = {
+    "cli.py": 3,
+    "config/design.py": 1,
+    "config/examples.py": 1,
+}
+
+
+def test_no_module_outside_the_registry_branches_on_a_kind_name():
+    import re
+    from pathlib import Path
+
+    import softimpact_cli
+
+    names = "|".join(ANALYSIS_KINDS)
+    chain = re.compile(rf"(kind|analysis\"\)|analysis\"\])\s*(==|!=|in)\s*\(?\"({names})\"")
+    root = Path(softimpact_cli.__file__).parent
+    found = {}
+    for path in root.rglob("*.py"):
+        rel = path.relative_to(root).as_posix()
+        if rel.startswith("kinds/"):
+            continue
+        hits = len(chain.findall(path.read_text()))
+        if hits:
+            found[rel] = hits
+    assert found == ALLOWED_KIND_TESTS
