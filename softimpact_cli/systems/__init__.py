@@ -9,12 +9,13 @@ from __future__ import annotations
 from ..kernels.numba_cache import stabilise
 from . import bilinear as _bilinear
 from . import duffing as _duffing
+from . import stops as _stops
 from . import variational as _variational
-from .base import COUPLING_PARAMETERS, LAWS, Parameter, Surfaces, System
+from .base import COUPLING_PARAMETERS, Parameter, Surfaces, System
 from .bilinear import BILINEAR_BODY, BILINEAR_PAIR
 from .duffing import DUFFING_BODY, DUFFING_PAIR
 
-for _module in (_bilinear, _duffing, _variational):
+for _module in (_bilinear, _duffing, _stops, _variational):
     stabilise(_module)
 
 REGISTRY: dict[tuple[str, int], System] = {
@@ -25,6 +26,9 @@ REGISTRY: dict[tuple[str, int], System] = {
 }
 
 MODELS = tuple(sorted({model for model, _ in REGISTRY}))
+LAWS = tuple(_stops.LAWS)  # names of the stop laws (systems/stops.py)
+STOP_LAWS = _stops.LAWS  # {name: StopLaw}
+LAW_KEYS = _stops.LAW_KEYS  # {[coupling] key: LawKey} of the keys only some laws use
 
 
 def get_system(model: str, bodies: int) -> System:
@@ -38,5 +42,5 @@ def get_system(model: str, bodies: int) -> System:
         ) from None
 
 
-__all__ = ["COUPLING_PARAMETERS", "LAWS", "MODELS", "REGISTRY", "Parameter", "Surfaces",
-           "System", "get_system"]
+__all__ = ["COUPLING_PARAMETERS", "LAWS", "LAW_KEYS", "MODELS", "REGISTRY", "STOP_LAWS",
+           "Parameter", "Surfaces", "System", "get_system"]

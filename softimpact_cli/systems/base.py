@@ -22,8 +22,9 @@ A system is data plus two small jitted functions. The kernels know nothing else 
    side is a contact between bodies (``-1`` for none): contacts and penetration are
    counted on it.
 
-Adding a system (another restoring force, a Hertzian stop, a third body) means adding
-one module that builds a :class:`System` and registering it in ``systems/__init__.py``.
+Adding a system (another restoring force, a third body) means adding one module that
+builds a :class:`System` and registering it in ``systems/__init__.py``; a stop law is
+one entry in ``systems/stops.py``.
 """
 
 from __future__ import annotations
@@ -135,20 +136,8 @@ COUPLING_PARAMETERS = (
     Parameter("c_c", "1", 10.0, "damping of the soft stop", minimum=0.0),
 )
 
-LAWS = ("paper", "no-tension")
-
 
 def pack_parameters(parameters: tuple[Parameter, ...], values: Mapping[str, float]
                     ) -> np.ndarray:
     """Body parameters in declaration order, as float64."""
     return np.array([float(values[p.name]) for p in parameters])
-
-
-def pack_coupling(values: Mapping[str, float]) -> np.ndarray:
-    """The coupling block every pair appends to its body block:
-    ``d, k_c, c_c, cos phi, sin phi, no_tension, phi`` (cos and sin precomputed so the
-    right-hand side needs one sine and one cosine per evaluation)."""
-    phi = float(values["phi"])
-    return np.array([float(values["d"]), float(values["k_c"]), float(values["c_c"]),
-                     np.cos(phi), np.sin(phi),
-                     1.0 if values.get("law", "paper") == "no-tension" else 0.0, phi])
