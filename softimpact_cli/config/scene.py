@@ -24,7 +24,7 @@ from ..kinds.catalogue import CatalogueAnalysis  # noqa: F401
 from ..kinds.dcrit import CriticalDistanceAnalysis  # noqa: F401
 from ..kinds.sweeps import SweepAnalysis  # noqa: F401
 from ..kinds.trajectory import TrajectoryAnalysis  # noqa: F401
-from ..systems import LAWS, MODELS, System, get_system
+from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
 from .limits import (
     MAX_NESTING,
     check_nesting,
@@ -123,8 +123,15 @@ def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any
             values[param.name] = sec.number(
                 param.name, param.default,
                 lambda v, p=param: p.check(v) or parameter_problem(p.name, v))
-    values["law"] = sec.choice("law", "paper", LAWS)
-    sec.finish(("d", "phi", "k_c", "c_c", "law"))
+    law = STOP_LAWS[sec.choice("law", "paper", LAWS)]
+    values["law"] = law.name
+    for key in LAW_KEYS.values():  # a law's own keys (the Hunt-Crossley exponent)
+        if key in law.keys:
+            values[key.name] = sec.number(key.name, key.default, key.check)
+        elif sec.has(key.name):
+            users = " or ".join(repr(lw.name) for lw in STOP_LAWS.values() if key in lw.keys)
+            raise sec.fail(key.name, f"only with law = {users}; law is {law.name!r}")
+    sec.finish(("d", "phi", "k_c", "c_c", "law") + tuple(LAW_KEYS))
 
 
 def _read_integrator(source: str, doc: dict) -> IntegratorSettings:

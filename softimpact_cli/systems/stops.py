@@ -8,6 +8,11 @@ and the right body on (``x2'' = ... + F_C``). Contact is ``delta >= 0``; outside
 - ``paper`` (the study's): ``F_C = k_c delta + c_c delta'``; the damper may pull.
 - ``no-tension``: the same, clipped at 0 (the stop never pulls). It adds a switching
   surface, the force ``k_c delta + c_c delta' = 0``, watched only in contact.
+- ``hunt-crossley`` (Hertzian contact with Hunt and Crossley's damping):
+  ``F_C = k_c delta^n + c_c delta^n delta'`` with ``n = [coupling] exponent`` (default
+  3/2, allowed 1 <= n <= 10). It is continuous at contact onset (no force jump) and may
+  pull while ``delta' < -k_c / c_c``, as the formula says; n >= 1 keeps its Jacobian
+  finite at onset.
 
 How a restoring force and a stop law combine: a pair's module (``duffing.py``,
 ``bilinear.py``) packs its body block and then this module's coupling block
@@ -44,6 +49,7 @@ CONTACT_BIT = 1  # surface 0 of every pair: delta = x1 - x2 - d >= 0
 # Law codes, packed as float64 at LAW.
 PAPER = 0.0
 NO_TENSION = 1.0
+HUNT_CROSSLEY = 2.0
 
 
 # ---------------------------------------------------------------- the laws, jitted
@@ -53,6 +59,28 @@ NO_TENSION = 1.0
 def linear_force(p, at, delta, rate):
     """``k_c delta + c_c delta'`` (paper; no-tension while pushing)."""
     return p[at + KC] * delta + p[at + CC] * rate
+
+
+@njit(cache=True)
+def hunt_crossley_force(p, at, delta, rate):
+    """``(k_c + c_c delta') delta^n`` while ``delta >= 0``; 0 past the surface (reached in
+    the engaged mode only by a step's trial stages before the crossing is located)."""
+    if delta < 0.0:
+        return 0.0
+    power = delta ** p[at + EXPONENT]
+    return p[at + KC] * power + p[at + CC] * power * rate
+
+
+@njit(cache=True)
+def hunt_crossley_slopes(p, at, delta, rate):
+    """``(dF/d delta, dF/d delta') = (n delta^(n-1) (k_c + c_c delta'), c_c delta^n)``,
+    finite at ``delta = 0`` because ``n >= 1`` (there ``k_c + c_c delta'`` for n = 1, the
+    derivative from inside the contact; 0 for n > 1); 0 past the surface."""
+    if delta < 0.0:
+        return 0.0, 0.0
+    n = p[at + EXPONENT]
+    below = delta ** (n - 1.0)
+    return n * below * (p[at + KC] + p[at + CC] * rate), p[at + CC] * below * delta
 
 
 @njit(cache=True)
@@ -70,6 +98,8 @@ def stop_force(p, at, mode, law_bit, delta, rate):
         if mode & law_bit:
             return linear_force(p, at, delta, rate)
         return 0.0
+    if law == HUNT_CROSSLEY:
+        return hunt_crossley_force(p, at, delta, rate)
     return np.nan
 
 
@@ -77,6 +107,10 @@ def stop_force(p, at, mode, law_bit, delta, rate):
 def stop_slopes(p, at, mode, law_bit, delta, rate):
     """``(dF_C/d delta, dF_C/d delta')`` in ``mode`` (arguments as :func:`stop_force`)."""
     law = p[at + LAW]
+    if law == HUNT_CROSSLEY:
+        if not (mode & CONTACT_BIT):
+            return 0.0, 0.0
+        return hunt_crossley_slopes(p, at, delta, rate)
     engaged = (mode & CONTACT_BIT) != 0 and (law == PAPER or (mode & law_bit) != 0)
     a = 1.0 if engaged else 0.0
     return a * p[at + KC], a * p[at + CC]
@@ -126,11 +160,17 @@ class StopLaw:
     surfaces: Callable[[np.ndarray, int], tuple[list, list, list]] = _no_surfaces
 
 
+EXPONENT_KEY = LawKey(
+    "exponent", 1.5, 1.0, 10.0, EXPONENT,
+    "exponent n of the Hertzian stop (3/2: Hertz; n >= 1 keeps dF/d delta finite at onset)")
+
 LAWS: dict[str, StopLaw] = {
     law.name: law for law in (
         StopLaw("paper", PAPER, "k_c delta + c_c delta' (the damper may pull)"),
         StopLaw("no-tension", NO_TENSION, "max(k_c delta + c_c delta', 0) (never pulls)",
                 surfaces=_force_surface),
+        StopLaw("hunt-crossley", HUNT_CROSSLEY, "k_c delta^n + c_c delta^n delta' (Hertzian)",
+                keys=(EXPONENT_KEY,)),
     )
 }
 
