@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from ..kernels.cells import MAX_CELL_DIM
 from ..kinds import ANALYSIS_KINDS, KINDS, SWEEP_KINDS, SceneContext  # noqa: F401
 from ..kinds.bifurcation import BifurcationAnalysis  # noqa: F401
 from ..kinds.catalogue import CatalogueAnalysis  # noqa: F401
@@ -25,6 +26,7 @@ from ..kinds.dcrit import CriticalDistanceAnalysis  # noqa: F401
 from ..kinds.sweeps import SweepAnalysis  # noqa: F401
 from ..kinds.trajectory import TrajectoryAnalysis  # noqa: F401
 from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
+from ..systems.base import SUPPORTED_BODIES
 from .limits import (
     MAX_NESTING,
     check_nesting,
@@ -95,7 +97,7 @@ def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
     model = sec.choice("model", None, MODELS) if sec.has("model") else None
     if model is None:
         raise sec.fail("model", f"is required; one of {', '.join(map(repr, MODELS))}")
-    bodies = sec.integer("bodies", 2, 1, 2)
+    bodies = sec.integer("bodies", 2, min(SUPPORTED_BODIES), max(SUPPORTED_BODIES))
     system = get_system(model, bodies)
     body_params = [p for p in system.parameters if p.name not in ("d", "phi", "k_c", "c_c")]
     values: dict[str, Any] = {}
@@ -209,6 +211,10 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     system, values = _read_system(source, doc)
     _read_coupling(source, doc, system, values)
     integrator = _read_integrator(source, doc)
+    if integrator.cell_size > 0.0 and system.dim > MAX_CELL_DIM:
+        raise ConfigError(f"{source}: [integrator] cell_size: recurrence cells hold states of "
+                          f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
+                          "use cell_size = 0")
     period = 2.0 * math.pi / values["w"]
     ctx = SceneContext(source, doc, system, values, period,
                        lambda axis, v: _check_axis(system, axis, v, period))

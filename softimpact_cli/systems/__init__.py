@@ -11,7 +11,7 @@ from . import bilinear as _bilinear
 from . import duffing as _duffing
 from . import stops as _stops
 from . import variational as _variational
-from .base import COUPLING_PARAMETERS, Parameter, Surfaces, System
+from .base import COUPLING_PARAMETERS, Parameter, Surfaces, System, check_bodies
 from .bilinear import BILINEAR_BODY, BILINEAR_PAIR
 from .duffing import DUFFING_BODY, DUFFING_PAIR
 
@@ -24,6 +24,12 @@ REGISTRY: dict[tuple[str, int], System] = {
     ("bilinear", 1): BILINEAR_BODY,
     ("bilinear", 2): BILINEAR_PAIR,
 }
+
+for (_model, _bodies), _system in REGISTRY.items():  # a third body fails here, loudly
+    check_bodies(_system.bodies, f"REGISTRY[{_model!r}, {_bodies}]")
+    if (_system.model, _system.bodies) != (_model, _bodies):
+        raise ValueError(f"REGISTRY[{_model!r}, {_bodies}] holds {_system.model!r} with "
+                         f"{_system.bodies} bodies")
 
 MODELS = tuple(sorted({model for model, _ in REGISTRY}))
 LAWS = tuple(_stops.LAWS)  # names of the stop laws (systems/stops.py)
