@@ -30,7 +30,9 @@ from scipy.integrate import solve_ivp
 def contact_force(x1, v1, x2, v2, par, contact=None, pushing=None):
     """F_C of SPEC.md: 0 while x1 - x2 < d, else k_c delta + c_c delta' ("paper" law).
 
-    With ``law = "no-tension"`` the force is clipped at 0 (max(F_C, 0)).
+    With ``law = "no-tension"`` the force is clipped at 0 (max(F_C, 0)). With
+    ``law = "hunt-crossley"`` it is k_c delta^n + c_c delta^n delta' (n = ``exponent``,
+    default 1.5), and 0 while delta < 0 even in a frozen contact.
     ``contact``/``pushing`` freeze the two decisions instead of reading the state.
     """
     delta = x1 - x2 - par["d"]
@@ -38,6 +40,11 @@ def contact_force(x1, v1, x2, v2, par, contact=None, pushing=None):
         contact = delta >= 0.0
     if not contact:
         return 0.0
+    if par.get("law", "paper") == "hunt-crossley":
+        if delta < 0.0:
+            return 0.0
+        n = par.get("exponent", 1.5)
+        return par["k_c"] * delta**n + par["c_c"] * delta**n * (v1 - v2)
     fc = par["k_c"] * delta + par["c_c"] * (v1 - v2)
     if par.get("law", "paper") == "no-tension":
         if pushing is None:
@@ -246,12 +253,16 @@ def solve_model(model: Switched, y0, t_span, t_eval=None, rtol=1e-12, atol=1e-12
 
 
 def duffing_pair_energy(y, par):
-    """sum(v^2/2 + k1 x^2/2 + k2 x^4/4) + k_c/2 delta^2 while delta > 0."""
+    """sum(v^2/2 + k1 x^2/2 + k2 x^4/4) + the stop's potential energy: k_c/2 delta^2 while
+    delta > 0, or k_c delta^(n+1)/(n+1) for the Hunt-Crossley law."""
     y = np.asarray(y)
     x1, v1, x2, v2 = y[..., 0], y[..., 1], y[..., 2], y[..., 3]
     k1, k2 = par["k1"], par["k2"]
     e = 0.0
     for x, v in ((x1, v1), (x2, v2)):
         e = e + 0.5 * v**2 + 0.5 * k1 * x**2 + 0.25 * k2 * x**4
-    delta = x1 - x2 - par["d"]
-    return e + 0.5 * par["k_c"] * np.where(delta > 0.0, delta, 0.0) ** 2
+    delta = np.where(x1 - x2 - par["d"] > 0.0, x1 - x2 - par["d"], 0.0)
+    if par.get("law", "paper") == "hunt-crossley":
+        n = par.get("exponent", 1.5)
+        return e + par["k_c"] * delta ** (n + 1) / (n + 1)
+    return e + 0.5 * par["k_c"] * delta**2

@@ -98,6 +98,10 @@ BAD_SCENES = {
                               "[coupling] c_c"),
     "nan.toml": ("[system]\nmodel='duffing'\nk1=nan\n", "[system] k1"),
     "bad_phi.toml": ("[system]\nmodel='duffing'\n[coupling]\nphi='5*pie/8'\n", "[coupling] phi"),
+    "bad_exponent.toml": ("[system]\nmodel='duffing'\n[coupling]\nlaw='hunt-crossley'\n"
+                          "exponent=0.5\n", "[coupling] exponent"),
+    "exponent_of_paper.toml": ("[system]\nmodel='duffing'\n[coupling]\nexponent=1.5\n",
+                               "[coupling] exponent"),
 }
 
 
@@ -202,3 +206,55 @@ def test_stiff_stop_rk4_warns_and_diverges_auto_converges(tmp_path):
     assert info["outcome"] == "converged" and info["integrator_resolved_method"] == "auto"
     steps = info["steps_by_method"]["classify"]
     assert steps["explicit"] > 0 and steps["stiff"] > 0 and steps["method_switches"] >= 2
+
+
+HUNT_CROSSLEY_BASINS = """
+[system]
+model = "duffing"
+[coupling]
+d = 3.0
+phi = "pi"
+law = "hunt-crossley"
+exponent = 1.5
+[integrator]
+max_periods = 400
+[analysis]
+kind = "basins"
+[initial_conditions]
+kind = "plane"
+axes = ["x1", "x2"]
+ranges = [[-8.0, 8.0], [-8.0, 8.0]]
+resolution = [6, 6]
+[catalogue]
+grid = 4
+random = 10
+[output]
+path = "{out}"
+"""
+
+
+def test_hunt_crossley_basins_and_trajectory_end_to_end(tmp_path):
+    """law = "hunt-crossley" through sweep, info and plot: a basins plane and a trajectory
+    that touches the stop."""
+    out = tmp_path / "hc.h5"
+    scene = tmp_path / "hc.toml"
+    scene.write_text(HUNT_CROSSLEY_BASINS.format(out=out))
+    proc = run_cli("sweep", str(scene))
+    assert proc.returncode == 0, proc.stderr
+    with xr.open_dataset(out) as ds:
+        assert "law=hunt-crossley" in ds.attrs["parameters"]
+        assert "exponent=1.5" in ds.attrs["parameters"]
+        assert ds["label"].size == 36 and int((ds["status"] == 0).sum()) >= 30
+    info = run_cli("info", str(out))
+    assert info.returncode == 0 and "exponent=1.5" in info.stdout, info.stderr
+    proc = run_cli("plot", "basins", str(out), "-o", str(tmp_path / "hc.png"))
+    assert proc.returncode == 0, proc.stderr
+    traj = tmp_path / "traj.toml"
+    traj.write_text(SCENE.format(out=tmp_path / "traj.h5").replace(
+        'phi = "pi"', 'phi = "pi"\nlaw = "hunt-crossley"\nexponent = 2.0'))
+    proc = run_cli("sweep", str(traj))
+    assert proc.returncode == 0, proc.stderr
+    with xr.open_dataset(tmp_path / "traj.h5") as ds:
+        assert ds.attrs["outcome"] == "converged"
+        assert ds["section_contacts"].sum() > 0
+        assert "exponent=2.0" in ds.attrs["parameters"]

@@ -24,6 +24,7 @@ import numpy as np
 from ..config import ConfigError, IntegratorSettings
 from ..kernels.codes import CONVERGED, OK, outcome
 from ..systems import System, get_system
+from ..systems.base import check_bodies
 from ..systems.variational import initial_variational_state, variational_system
 from .engine import Problem, classify_state, flow, record_trajectory
 from .labels import Label, shift
@@ -299,6 +300,7 @@ def label_orbit(catalogue: Catalogue, orbit: np.ndarray, impacting: bool,
                 tol: float = 1e-3) -> Label:
     """Name a converged orbit (q, 4) of the pair, or (q, 2) of one body (time order)."""
     q = orbit.shape[0]
+    check_bodies(orbit.shape[1] // 2, "label_orbit (a pair's orbit splits at state index 2)")
     if impacting:
         return Label("impacting", q)
     last = orbit[-1]
@@ -318,6 +320,7 @@ def build_catalogue(system: System, values: dict, integrator: IntegratorSettings
                     states: np.ndarray, t0: float = 0.0, match_tol: float = 1e-3,
                     progress=None) -> Catalogue:
     """The full catalogue: left attractors, and for a pair the right ones and combinations."""
+    check_bodies(system.bodies, "build_catalogue (left and right attractors)")
     problem = body_problem(system, values, integrator)
     left, counts = body_catalogue(problem, states, t0, match_tol, progress)
     right: list[Attractor] = []
@@ -346,6 +349,7 @@ def catalogue_dataset(cat: Catalogue, system: System, integrator: IntegratorSett
     """The catalogue as an xarray Dataset (attractors, right body, combinations, curves)."""
     import xarray as xr
 
+    check_bodies(system.bodies, "catalogue_dataset (left and right attractors)")
     problem = body_problem(system, cat.values, SHOOTING)
     T = problem.period
     n = len(cat.attractors)

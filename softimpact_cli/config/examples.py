@@ -6,6 +6,8 @@ the larger ones say how long they take. The full figure scenes are in configs/fi
 
 from __future__ import annotations
 
+from ..systems import STOP_LAWS
+
 _COMMON = """\
 # Every key not given takes its default (README: "Running a scene"); unknown keys are errors.
 # Run: softimpact sweep THIS_FILE.toml   (then: softimpact info / softimpact plot {plot} ...)
@@ -20,7 +22,10 @@ d = 6.0                    # gap: contact while x1 - x2 >= d
 phi = "5*pi/8"             # phase of the right body's forcing: a number or "a*pi/b"
 k_c = 8.0                  # stop stiffness
 c_c = 10.0                 # stop damping
-"""
+law = "paper"              # {laws}
+""".format(laws=" | ".join(f'"{law.name}"' for law in STOP_LAWS.values()) + "".join(
+    f" ({law.name}: {key.name} = {key.default:g})" for law in STOP_LAWS.values()
+    for key in law.keys))
 
 EXAMPLES: dict[str, str] = {
     "trajectory": _PAIR + """

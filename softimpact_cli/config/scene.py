@@ -18,13 +18,15 @@ from typing import Any
 
 import numpy as np
 
+from ..kernels.cells import MAX_CELL_DIM
 from ..kinds import ANALYSIS_KINDS, KINDS, SWEEP_KINDS, SceneContext  # noqa: F401
 from ..kinds.bifurcation import BifurcationAnalysis  # noqa: F401
 from ..kinds.catalogue import CatalogueAnalysis  # noqa: F401
 from ..kinds.dcrit import CriticalDistanceAnalysis  # noqa: F401
 from ..kinds.sweeps import SweepAnalysis  # noqa: F401
 from ..kinds.trajectory import TrajectoryAnalysis  # noqa: F401
-from ..systems import LAWS, MODELS, System, get_system
+from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
+from ..systems.base import SUPPORTED_BODIES
 from .limits import (
     MAX_NESTING,
     check_nesting,
@@ -95,7 +97,7 @@ def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
     model = sec.choice("model", None, MODELS) if sec.has("model") else None
     if model is None:
         raise sec.fail("model", f"is required; one of {', '.join(map(repr, MODELS))}")
-    bodies = sec.integer("bodies", 2, 1, 2)
+    bodies = sec.integer("bodies", 2, min(SUPPORTED_BODIES), max(SUPPORTED_BODIES))
     system = get_system(model, bodies)
     body_params = [p for p in system.parameters if p.name not in ("d", "phi", "k_c", "c_c")]
     values: dict[str, Any] = {}
@@ -123,8 +125,15 @@ def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any
             values[param.name] = sec.number(
                 param.name, param.default,
                 lambda v, p=param: p.check(v) or parameter_problem(p.name, v))
-    values["law"] = sec.choice("law", "paper", LAWS)
-    sec.finish(("d", "phi", "k_c", "c_c", "law"))
+    law = STOP_LAWS[sec.choice("law", "paper", LAWS)]
+    values["law"] = law.name
+    for key in LAW_KEYS.values():  # a law's own keys (the Hunt-Crossley exponent)
+        if key in law.keys:
+            values[key.name] = sec.number(key.name, key.default, key.check)
+        elif sec.has(key.name):
+            users = " or ".join(repr(lw.name) for lw in STOP_LAWS.values() if key in lw.keys)
+            raise sec.fail(key.name, f"only with law = {users}; law is {law.name!r}")
+    sec.finish(("d", "phi", "k_c", "c_c", "law") + tuple(LAW_KEYS))
 
 
 def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
@@ -202,6 +211,10 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     system, values = _read_system(source, doc)
     _read_coupling(source, doc, system, values)
     integrator = _read_integrator(source, doc)
+    if integrator.cell_size > 0.0 and system.dim > MAX_CELL_DIM:
+        raise ConfigError(f"{source}: [integrator] cell_size: recurrence cells hold states of "
+                          f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
+                          "use cell_size = 0")
     period = 2.0 * math.pi / values["w"]
     ctx = SceneContext(source, doc, system, values, period,
                        lambda axis, v: _check_axis(system, axis, v, period))

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..systems.base import check_bodies
 from .limits import (
     MAX_GRID_VALUES,
     MAX_INITIAL_CONDITIONS,
@@ -205,6 +206,7 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
               check_value) -> Grid:
     """[grid] for a sweep; ``check_value(axis, value)`` returns a problem or None."""
     sec = Section(source, "grid", doc.get("grid", {}))
+    check_bodies(bodies, "[grid] (coupling axes of one pair)")
     allowed = GRID_AXES if bodies == 2 else ("t0",)
     if sec.has("panels"):
         return _read_panels(sec, values, allowed, period, check_value)

@@ -16,8 +16,10 @@ from numba.typed import Dict
 from .codes import MIXED_CELL
 
 NO_CELL = -1  # key of a point outside the representable range
-_BITS = 15  # bits per coordinate of a key (4 coordinates fit in an int64)
+_BITS = 15  # bits per coordinate of a key
 _OFFSET = 1 << (_BITS - 1)
+MAX_CELL_DIM = 63 // _BITS  # state variables a key holds (4: one body or a pair); the
+# scene reader refuses cells for larger states, and cell_key raises for them
 
 
 @njit(cache=True)
@@ -28,10 +30,11 @@ def new_cells():
 
 @njit(cache=True)
 def cell_key(y, cell_size):
-    """Integer key of the cell holding y, or NO_CELL when a coordinate is beyond range
-    (or the state has more than 4 coordinates)."""
-    if y.shape[0] * _BITS > 63:
-        return NO_CELL
+    """Integer key of the cell holding y, or NO_CELL when a coordinate is beyond range.
+    A state of more than MAX_CELL_DIM coordinates has no key: a ValueError, never a
+    silent switch-off."""
+    if y.shape[0] > MAX_CELL_DIM:
+        raise ValueError("recurrence cells hold at most 4 state variables (kernels/cells.py)")
     key = 0
     for i in range(y.shape[0]):
         k = np.floor(y[i] / cell_size)

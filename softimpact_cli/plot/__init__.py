@@ -16,7 +16,8 @@ import numpy as np
 DEFAULT_DPI = 150
 # TeX symbols of the parameters named in a result's ``parameters`` attribute
 PARAMETER_TEX = {"c": "c", "k1": "k_1", "k2": "k_2", "F": "F", "w": r"\omega", "d": "d",
-                 "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "d1": "d_1", "c1": "c_1"}
+                 "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "d1": "d_1", "c1": "c_1",
+                 "exponent": "n"}
 
 
 def new_figure(**kwargs):

@@ -26,6 +26,7 @@ from ..store import open_result
 from ..store.lock import output_lock
 from ..store.provenance import command_line, history_line, provenance
 from ..store.sweep_store import DamagedHeader, DamagedPart, RunIdentity, SweepStore
+from ..systems.base import check_bodies
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
 from .plan import Plan, default_chunk_size
@@ -39,6 +40,7 @@ def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ..
     """
     s = scene.catalogue
     system = scene.system
+    check_bodies(system.bodies, "prepare_catalogues (a body or a pair's combinations)")
     problem = body_problem(system, scene.values, scene.integrator)
     states = sample_states(s.box, s.grid, s.random, s.seed)
     left, counts = body_catalogue(problem, states, 0.0, s.match_tol, progress)
@@ -70,6 +72,7 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
         return None
     from ..analysis.critical_distance import critical_distance, uncoupled_pair
 
+    check_bodies(scene.system.bodies, "capturable_orbits (d_crit of a pair's x1 - x2 - d)")
     known = {}
     for phi, cat in catalogues.items():
         if scene.system.bodies == 1:

@@ -11,12 +11,13 @@ from ..kernels.numba_cache import source_keyed_cache, stabilise
 with source_keyed_cache():  # every jitted module of the package, imported here
     from . import bilinear as _bilinear
     from . import duffing as _duffing
+    from . import stops as _stops
     from . import variational as _variational
-from .base import COUPLING_PARAMETERS, LAWS, Parameter, Surfaces, System
+from .base import COUPLING_PARAMETERS, Parameter, Surfaces, System, check_bodies
 from .bilinear import BILINEAR_BODY, BILINEAR_PAIR
 from .duffing import DUFFING_BODY, DUFFING_PAIR
 
-for _module in (_bilinear, _duffing, _variational):
+for _module in (_bilinear, _duffing, _stops, _variational):
     stabilise(_module)
 
 REGISTRY: dict[tuple[str, int], System] = {
@@ -26,7 +27,16 @@ REGISTRY: dict[tuple[str, int], System] = {
     ("bilinear", 2): BILINEAR_PAIR,
 }
 
+for (_model, _bodies), _system in REGISTRY.items():  # a third body fails here, loudly
+    check_bodies(_system.bodies, f"REGISTRY[{_model!r}, {_bodies}]")
+    if (_system.model, _system.bodies) != (_model, _bodies):
+        raise ValueError(f"REGISTRY[{_model!r}, {_bodies}] holds {_system.model!r} with "
+                         f"{_system.bodies} bodies")
+
 MODELS = tuple(sorted({model for model, _ in REGISTRY}))
+LAWS = tuple(_stops.LAWS)  # names of the stop laws (systems/stops.py)
+STOP_LAWS = _stops.LAWS  # {name: StopLaw}
+LAW_KEYS = _stops.LAW_KEYS  # {[coupling] key: LawKey} of the keys only some laws use
 
 
 def get_system(model: str, bodies: int) -> System:
@@ -40,5 +50,5 @@ def get_system(model: str, bodies: int) -> System:
         ) from None
 
 
-__all__ = ["COUPLING_PARAMETERS", "LAWS", "MODELS", "REGISTRY", "Parameter", "Surfaces",
-           "System", "get_system"]
+__all__ = ["COUPLING_PARAMETERS", "LAWS", "LAW_KEYS", "MODELS", "REGISTRY", "STOP_LAWS",
+           "Parameter", "Surfaces", "System", "get_system"]

@@ -22,8 +22,40 @@ A system is data plus two small jitted functions. The kernels know nothing else 
    side is a contact between bodies (``-1`` for none): contacts and penetration are
    counted on it.
 
-Adding a system (another restoring force, a Hertzian stop, a third body) means adding
-one module that builds a :class:`System` and registering it in ``systems/__init__.py``.
+Adding a restoring force means one module that builds a :class:`System` per body count
+(as ``duffing.py`` and ``bilinear.py`` do: a body block of parameters, the stop law's
+coupling block from ``stops.py``) and its lines in ``REGISTRY`` (``systems/__init__.py``)
+and in ``variational.py``'s ``_KERNELS``. Adding a stop law is ``stops.py`` alone (its
+docstring says how). Nothing in the kernels changes for either.
+
+Adding a body (three oscillators in a row) is more than a module: the package is written
+for one body or a pair, and refuses other body counts loudly (``SUPPORTED_BODIES`` and
+:func:`check_bodies`, called at registration and where the code branches on the body
+count). It would take:
+
+1. ``systems``: a module with ``state_names`` ``x1, v1, x2, v2, x3, v3``, one contact
+   surface per neighbouring pair (``x1 - x2 - d12``, ``x2 - x3 - d23``), each stop force
+   from ``stops.stop_force`` with its own coupling block (``pack_coupling`` per gap) and
+   its own mode bits (``stops`` reads contact on bit 0, ``CONTACT_BIT``: a second stop
+   needs its contact bit passed like ``law_bit``), and ``SUPPORTED_BODIES`` extended.
+2. ``Surfaces.contact`` is one surface index: the kernels (``kernels/orbit.py``) count
+   contact onsets and the maximum penetration (``max_g``, ``max_penetration``, a known
+   orbit's ``d_crit``) on that surface only. Several stops need a mask of contact
+   surfaces there.
+3. ``config``: ``[system] bodies`` (1..2 today), ``[coupling]`` keys per gap and per
+   body phase, the grid axes (``config/sweep.py`` ``GRID_AXES``: one ``d``, one ``phi``),
+   and the default plane axes of ``[initial_conditions]`` (``x1, x2`` for 4 states).
+4. Labels and catalogues (``analysis/catalogue.py``, ``labels.py``): a pair's label is a
+   combination of a left and a right attractor (``right_attractors`` mirrors the left
+   body's with ``extra["right_sign"]``, ``extra["right_phase"]``; ``label_orbit`` splits
+   an orbit's state at index 2; names like ``L1^1 R1-0^1``). Three bodies need triples,
+   their shifts and names, and the label codes of ``sweep/chunks.py``.
+5. ``kernels/cells.py``: a recurrence cell's key packs at most ``MAX_CELL_DIM`` = 4
+   coordinates into an int64; six need another key (the scene reader refuses
+   ``cell_size > 0`` beyond it).
+6. The pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
+   orbits in ``sweep/runner.py``) use ``x1 - x2 - d``; the trajectory plot draws
+   ``x1 - x2``. Each needs its three-body meaning.
 """
 
 from __future__ import annotations
@@ -93,6 +125,18 @@ def relevance_table(n_surfaces: int, requires: Mapping[int, int]) -> np.ndarray:
     return table
 
 
+SUPPORTED_BODIES = (1, 2)  # what config, catalogues, labels, sweeps and cells are written for
+
+
+def check_bodies(bodies: int, where: str) -> None:
+    """Raise NotImplementedError unless ``bodies`` is 1 or 2: ``where`` names the code that
+    is written for one body or a pair (see "Adding a body" in this module's docstring)."""
+    if bodies not in SUPPORTED_BODIES:
+        raise NotImplementedError(
+            f"{where}: written for 1 or 2 bodies, not {bodies}; see 'Adding a body' in "
+            "softimpact_cli/systems/base.py")
+
+
 @dataclass(frozen=True)
 class System:
     """A registered model: see the module docstring for the contract."""
@@ -135,20 +179,8 @@ COUPLING_PARAMETERS = (
     Parameter("c_c", "1", 10.0, "damping of the soft stop", minimum=0.0),
 )
 
-LAWS = ("paper", "no-tension")
-
 
 def pack_parameters(parameters: tuple[Parameter, ...], values: Mapping[str, float]
                     ) -> np.ndarray:
     """Body parameters in declaration order, as float64."""
     return np.array([float(values[p.name]) for p in parameters])
-
-
-def pack_coupling(values: Mapping[str, float]) -> np.ndarray:
-    """The coupling block every pair appends to its body block:
-    ``d, k_c, c_c, cos phi, sin phi, no_tension, phi`` (cos and sin precomputed so the
-    right-hand side needs one sine and one cosine per evaluation)."""
-    phi = float(values["phi"])
-    return np.array([float(values["d"]), float(values["k_c"]), float(values["c_c"]),
-                     np.cos(phi), np.sin(phi),
-                     1.0 if values.get("law", "paper") == "no-tension" else 0.0, phi])

@@ -7,7 +7,8 @@ left body's second spring is on its left, the right body's on its right:
     x2'' + c x2' + k1 x2 + k2 (x2 - d1) H( x2 - d1) - F_C = F sin(w t + phi)
 
 The one-body system is the left body. Mirror symmetry: if x(t) solves the left body's
-equation, -x(t) solves the right body's with forcing shifted by pi.
+equation, -x(t) solves the right body's with forcing shifted by pi. F_C is the stop law's
+force (systems/stops.py), 0 while x1 - x2 < d.
 """
 
 from __future__ import annotations
@@ -18,17 +19,16 @@ from math import cos, sin
 import numpy as np
 from numba import njit
 
+from . import stops
 from .base import (
     COUPLING_PARAMETERS,
-    LAWS,
     Parameter,
     Surfaces,
     System,
-    pack_coupling,
     pack_parameters,
     relevance_table,
 )
-from .duffing import contact_surfaces
+from .stops import pack_coupling, stop_force, stop_slopes
 
 BODY_PARAMETERS = (
     Parameter("c", "1", 0.02, "viscous damping of each body", minimum=0.0),
@@ -43,12 +43,14 @@ BODY_PARAMETERS = (
 CATALOGUE_BOX = {"x": (-3.0, 3.0), "v": (-3.0, 3.0)}
 
 C, K1, K2, F, W, D1 = 0, 1, 2, 3, 4, 5
-D, KC, CC, COS_PHI, SIN_PHI, NO_TENSION, PHI = 6, 7, 8, 9, 10, 11, 12
+STOP = 6  # start of the coupling block (systems/stops.py), whose entries follow:
+D, COS_PHI, SIN_PHI, LAW = STOP + stops.D, STOP + stops.COS_PHI, STOP + stops.SIN_PHI, \
+    STOP + stops.LAW
 
-CONTACT_BIT = 1  # surface 0: x1 - x2 - d >= 0
+# surface 0: contact (x1 - x2 - d >= 0); then the springs; then the law's
 LEFT_SPRING_BIT = 2  # surface 1: -x1 - d1 >= 0
 RIGHT_SPRING_BIT = 4  # surface 2: x2 - d1 >= 0
-FORCE_BIT = 8  # surface 3 (no-tension law only)
+LAW_BIT = 8  # surface 3: the law's first (no-tension: the stop force)
 
 
 def pack_body(values: Mapping[str, float]) -> np.ndarray:
@@ -83,13 +85,6 @@ def body_jacobian(t, y, p, mode, jac, dfdt):
 
 
 @njit(cache=True)
-def contact_active(p, mode):
-    if not (mode & CONTACT_BIT):
-        return False
-    return p[NO_TENSION] == 0.0 or (mode & FORCE_BIT) != 0
-
-
-@njit(cache=True)
 def pair_rhs(t, y, p, mode, out):
     wt = p[W] * t
     s = sin(wt)
@@ -98,9 +93,7 @@ def pair_rhs(t, y, p, mode, out):
     v1 = y[1]
     x2 = y[2]
     v2 = y[3]
-    fc = 0.0
-    if contact_active(p, mode):
-        fc = p[KC] * (x1 - x2 - p[D]) + p[CC] * (v1 - v2)
+    fc = stop_force(p, STOP, mode, LAW_BIT, x1 - x2 - p[D], v1 - v2)
     s1 = p[K2] * (x1 + p[D1]) if mode & LEFT_SPRING_BIT else 0.0
     s2 = p[K2] * (x2 - p[D1]) if mode & RIGHT_SPRING_BIT else 0.0
     out[0] = v1
@@ -111,9 +104,7 @@ def pair_rhs(t, y, p, mode, out):
 
 @njit(cache=True)
 def pair_jacobian(t, y, p, mode, jac, dfdt):
-    a = 1.0 if contact_active(p, mode) else 0.0
-    kc = a * p[KC]
-    cc = a * p[CC]
+    kc, cc = stop_slopes(p, STOP, mode, LAW_BIT, y[0] - y[2] - p[D], y[1] - y[3])
     jac[:, :] = 0.0
     jac[0, 1] = 1.0
     jac[2, 3] = 1.0
@@ -134,8 +125,8 @@ def pair_jacobian(t, y, p, mode, jac, dfdt):
 
 
 def pair_surfaces(p: np.ndarray) -> Surfaces:
-    return contact_surfaces(
-        p, D, KC, CC, NO_TENSION,
+    return stops.pair_surfaces(
+        p, STOP,
         [[-1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]],
         [-p[D1], -p[D1]],
         ["left spring", "right spring"],
@@ -170,5 +161,6 @@ BILINEAR_PAIR = System(
     jacobian=pair_jacobian,
     pack=pack_pair,
     surfaces=pair_surfaces,
-    extra={"catalogue_box": CATALOGUE_BOX, "laws": LAWS, "right_sign": -1.0, "right_phase": np.pi},
+    extra={"catalogue_box": CATALOGUE_BOX, "laws": tuple(stops.LAWS), "right_sign": -1.0,
+           "right_phase": np.pi},
 )

@@ -2,9 +2,8 @@
 
     x1'' + c x1' + k1 x1 + k2 x1^3 + F_C = F sin(w t)
     x2'' + c x2' + k1 x2 + k2 x2^3 - F_C = F sin(w t + phi)
-    F_C = k_c (x1 - x2 - d) + c_c (x1' - x2')   while x1 - x2 >= d, else 0
+    F_C = the stop law's force (systems/stops.py), 0 while x1 - x2 < d
 
-With the "no-tension" law F_C is clipped at zero (the stop pushes, never pulls).
 All quantities are dimensionless (mass 1); time in units of 1/w0.
 """
 
@@ -16,16 +15,16 @@ from math import cos, sin
 import numpy as np
 from numba import njit
 
+from . import stops
 from .base import (
     COUPLING_PARAMETERS,
-    LAWS,
     Parameter,
     Surfaces,
     System,
-    pack_coupling,
     pack_parameters,
     relevance_table,
 )
+from .stops import pack_coupling, stop_force, stop_slopes
 
 BODY_PARAMETERS = (
     Parameter("c", "1", 0.05, "viscous damping of each body", minimum=0.0),
@@ -40,10 +39,14 @@ CATALOGUE_BOX = {"x": (-12.0, 12.0), "v": (-12.0, 12.0)}
 
 # Packed parameter layout (indices into the float64 array the kernels receive).
 C, K1, K2, F, W = 0, 1, 2, 3, 4
-D, KC, CC, COS_PHI, SIN_PHI, NO_TENSION, PHI = 5, 6, 7, 8, 9, 10, 11
+STOP = 5  # start of the coupling block (systems/stops.py), whose entries follow:
+D, KC, CC = STOP + stops.D, STOP + stops.KC, STOP + stops.CC
+COS_PHI, SIN_PHI, LAW, PHI = STOP + stops.COS_PHI, STOP + stops.SIN_PHI, STOP + stops.LAW, \
+    STOP + stops.PHI
+EXPONENT = STOP + stops.EXPONENT
 
-CONTACT_BIT = 1  # surface 0: x1 - x2 - d >= 0
-FORCE_BIT = 2  # surface 1 (no-tension law only): k_c delta + c_c delta' >= 0
+# surface 0: contact (x1 - x2 - d >= 0); no surface of its own; then the law's
+LAW_BIT = 2
 
 
 def pack_body(values: Mapping[str, float]) -> np.ndarray:
@@ -76,14 +79,6 @@ def body_jacobian(t, y, p, mode, jac, dfdt):
 
 
 @njit(cache=True)
-def contact_active(p, mode):
-    """True when the stop exerts force in this mode (engaged, and not clipped)."""
-    if not (mode & CONTACT_BIT):
-        return False
-    return p[NO_TENSION] == 0.0 or (mode & FORCE_BIT) != 0
-
-
-@njit(cache=True)
 def pair_rhs(t, y, p, mode, out):
     # One sine and one cosine serve both bodies: sin(wt + phi) = s cos(phi) + c sin(phi).
     wt = p[W] * t
@@ -93,9 +88,7 @@ def pair_rhs(t, y, p, mode, out):
     v1 = y[1]
     x2 = y[2]
     v2 = y[3]
-    fc = 0.0
-    if contact_active(p, mode):
-        fc = p[KC] * (x1 - x2 - p[D]) + p[CC] * (v1 - v2)
+    fc = stop_force(p, STOP, mode, LAW_BIT, x1 - x2 - p[D], v1 - v2)
     out[0] = v1
     out[1] = p[F] * s - p[C] * v1 - p[K1] * x1 - p[K2] * x1 * x1 * x1 - fc
     out[2] = v2
@@ -105,9 +98,7 @@ def pair_rhs(t, y, p, mode, out):
 
 @njit(cache=True)
 def pair_jacobian(t, y, p, mode, jac, dfdt):
-    a = 1.0 if contact_active(p, mode) else 0.0
-    kc = a * p[KC]
-    cc = a * p[CC]
+    kc, cc = stop_slopes(p, STOP, mode, LAW_BIT, y[0] - y[2] - p[D], y[1] - y[3])
     jac[:, :] = 0.0
     jac[0, 1] = 1.0
     jac[2, 3] = 1.0
@@ -127,26 +118,8 @@ def pair_jacobian(t, y, p, mode, jac, dfdt):
     dfdt[3] = fw * (cos(wt) * p[COS_PHI] - sin(wt) * p[SIN_PHI])
 
 
-def contact_surfaces(p: np.ndarray, d_index: int, kc_index: int, cc_index: int,
-                     nt_index: int, extra_rows: list, extra_b: list, extra_names: list):
-    """Surfaces of a pair: contact first, then the model's own, then the force surface."""
-    A = [[1.0, 0.0, -1.0, 0.0]] + extra_rows
-    b = [-p[d_index]] + extra_b
-    names = ["contact"] + extra_names
-    requires = {}
-    if p[nt_index] != 0.0:
-        kc, cc = p[kc_index], p[cc_index]
-        requires[len(A)] = 0
-        A.append([kc, cc, -kc, -cc])
-        b.append(-kc * p[d_index])
-        names.append("stop force")
-    n = len(A)
-    return Surfaces(np.array(A, dtype=np.float64), np.array(b, dtype=np.float64),
-                    relevance_table(n, requires), 0, tuple(names))
-
-
 def pair_surfaces(p: np.ndarray) -> Surfaces:
-    return contact_surfaces(p, D, KC, CC, NO_TENSION, [], [], [])
+    return stops.pair_surfaces(p, STOP, [], [], [])
 
 
 def body_surfaces(p: np.ndarray) -> Surfaces:
@@ -176,5 +149,6 @@ DUFFING_PAIR = System(
     jacobian=pair_jacobian,
     pack=pack_pair,
     surfaces=pair_surfaces,
-    extra={"catalogue_box": CATALOGUE_BOX, "laws": LAWS, "right_sign": 1.0, "right_phase": 0.0},
+    extra={"catalogue_box": CATALOGUE_BOX, "laws": tuple(stops.LAWS), "right_sign": 1.0,
+           "right_phase": 0.0},
 )

@@ -39,6 +39,16 @@ def test_good_scene_fills_defaults():
     assert str(scene.output) == "results/good.h5"
 
 
+def test_hunt_crossley_scene_reads_its_exponent():
+    text = ("[system]\nmodel='duffing'\n[coupling]\nlaw='hunt-crossley'\n{}"
+            "[analysis]\nstate=[1.0, 0.0, 0.0, 0.0]\n")
+    assert parse_scene(text.format("")).values["exponent"] == 1.5  # the default, n = 3/2
+    scene = parse_scene(text.format("exponent = 1\n"))
+    assert scene.values["law"] == "hunt-crossley" and scene.values["exponent"] == 1.0
+    assert scene.system.pack(scene.values)[-1] == 1.0  # reaches the kernels' parameters
+    assert "exponent" not in parse_scene(GOOD).values  # other laws do not carry it
+
+
 def test_one_body_scene_has_no_coupling():
     scene = parse_scene('[system]\nmodel="duffing"\nbodies=1\n[analysis]\nstate=[1.0, 0.0]\n')
     assert scene.system.dim == 2 and "d" not in scene.values
@@ -64,6 +74,21 @@ BAD = {
     "unknown model": ("[system]\nmodel='van der pol'\n", "[system] model", "'duffing'"),
     "bad law": ("[system]\nmodel='duffing'\n[coupling]\nlaw='hertz'\n", "[coupling] law",
                 "'no-tension'"),
+    "exponent below 1": ("[system]\nmodel='duffing'\n[coupling]\nlaw='hunt-crossley'\n"
+                         "exponent=0.5\n", "[coupling] exponent", "must be in [1, 10], got 0.5"),
+    "exponent zero": ("[system]\nmodel='bilinear'\n[coupling]\nlaw='hunt-crossley'\n"
+                      "exponent=0\n", "[coupling] exponent", "[1, 10]"),
+    "exponent huge": ("[system]\nmodel='duffing'\n[coupling]\nlaw='hunt-crossley'\n"
+                      "exponent=11\n", "[coupling] exponent", "[1, 10]"),
+    "exponent string": ("[system]\nmodel='duffing'\n[coupling]\nlaw='hunt-crossley'\n"
+                        "exponent='3/2'\n", "[coupling] exponent", "must be a number"),
+    "exponent nan": ("[system]\nmodel='duffing'\n[coupling]\nlaw='hunt-crossley'\n"
+                     "exponent=nan\n", "[coupling] exponent", "finite"),
+    "exponent without its law": ("[system]\nmodel='duffing'\n[coupling]\nexponent=1.5\n",
+                                 "[coupling] exponent",
+                                 "only with law = 'hunt-crossley'; law is 'paper'"),
+    "exponent with no-tension": ("[system]\nmodel='duffing'\n[coupling]\nlaw='no-tension'\n"
+                                 "exponent=2\n", "[coupling] exponent", "law is 'no-tension'"),
     "bad method": ("[system]\nmodel='duffing'\n[integrator]\nmethod='euler'\n",
                    "[integrator] method", "'dopri5'"),
     "string number": ("[system]\nmodel='duffing'\nk1='1'\n", "[system] k1", "number"),

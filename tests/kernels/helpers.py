@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import hashlib
+import inspect
+
 import numpy as np
 
 from softimpact_cli.analysis.engine import Problem
@@ -50,3 +53,16 @@ def rk4_fixed(pr: Problem, y0, t0: float, t1: float, steps_per_period: int,
 def fit_slope(h, err) -> float:
     """Least-squares slope of log(err) against log(h)."""
     return float(np.polyfit(np.log(np.asarray(h, float)), np.log(np.asarray(err, float)), 1)[0])
+
+
+def stable_identity(layout: str, *dispatchers) -> None:
+    """Give a test's jitted functions a UUID made of their name and source (and of the
+    packed-parameter ``layout`` they read), as ``kernels.numba_cache.stabilise`` does for
+    the package: the kernels' disk cache, specialised on these functions, is then reused
+    by the next test run instead of growing by one entry per process, and a changed source
+    gets a new identity instead of stale cached code."""
+    for disp in dispatchers:
+        text = inspect.getsource(disp.py_func) + layout
+        digest = hashlib.sha1(text.encode()).hexdigest()[:16]
+        if getattr(disp, "_MemoMixin__uuid", None) is None:
+            disp._set_uuid(f"tests:{disp.py_func.__module__}.{disp.__name__}:{digest}")

@@ -4,10 +4,17 @@ cell MIXED_CELL, and a sweep with cells labels as a sweep without them."""
 from dataclasses import replace
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from softimpact_cli.kernels.cells import NO_CELL, cell_key, new_cells, remember_cells
+from softimpact_cli.kernels.cells import (
+    MAX_CELL_DIM,
+    NO_CELL,
+    cell_key,
+    new_cells,
+    remember_cells,
+)
 from softimpact_cli.kernels.codes import BY_CELLS, MIXED_CELL
 
 coordinate = st.integers(min_value=-5000, max_value=5000)
@@ -28,11 +35,40 @@ def test_points_share_a_key_exactly_when_they_share_a_cell(cell, a, b, size):
     assert cell_key(neighbour, size) != cell_key(ya, size) or not same
 
 
-def test_far_points_and_wide_states_have_no_cell():
+def test_far_points_have_no_cell():
     assert cell_key(np.array([1e9, 0.0, 0.0, 0.0]), 0.1) == NO_CELL
     assert cell_key(np.array([np.nan, 0.0]), 0.1) == NO_CELL
-    assert cell_key(np.zeros(5), 0.1) == NO_CELL  # more coordinates than a key holds
     assert cell_key(np.array([-0.05, 0.05]), 0.1) != cell_key(np.array([0.05, 0.05]), 0.1)
+
+
+def test_wider_states_are_refused_not_silently_uncelled():
+    """A key holds MAX_CELL_DIM = 4 coordinates (a pair); a fifth (a third body's state,
+    or the energy test's 5-state system) is an error, in the kernel and in the scene."""
+    assert MAX_CELL_DIM == 4
+    cell_key(np.zeros(4), 0.1)
+    with pytest.raises(ValueError, match="at most 4 state variables"):
+        cell_key(np.zeros(5), 0.1)
+    from softimpact_cli.analysis.engine import Problem, RecurrenceCells, classify_state
+    from tests.kernels.test_energy import FREE, WORK_PAIR
+
+    problem = Problem(WORK_PAIR, dict(FREE, d=50.0)).with_integrator(max_periods=20)
+    with pytest.raises(ValueError, match="at most 4 state variables"):
+        classify_state(problem, [3.0, 0.0, -3.0, 0.0, 0.0],
+                       recurrence=RecurrenceCells(0.5, 2, 20))
+
+
+def test_scene_refuses_cells_for_a_wider_state(monkeypatch):
+    import softimpact_cli.config.scene as scene_module
+    from softimpact_cli.config import ConfigError, parse_scene
+    from tests.kernels.test_energy import WORK_PAIR
+
+    monkeypatch.setattr(scene_module, "get_system", lambda model, bodies: WORK_PAIR)
+    text = ("[system]\nmodel='duffing'\n[integrator]\ncell_size={}\n[analysis]\n"
+            "state=[1.0, 0.0, 0.0, 0.0, 0.0]\n")
+    assert parse_scene(text.format(0.0)).system.dim == 5
+    with pytest.raises(ConfigError, match=r"\[integrator\] cell_size: recurrence cells hold "
+                                          r"states of at most 4 variables, this system has 5"):
+        parse_scene(text.format(0.5))
 
 
 def test_cells_visited_on_the_way_to_two_labels_become_mixed():

@@ -16,8 +16,6 @@ without touching the kernels. E + W must then be constant along the whole trajec
 
 from __future__ import annotations
 
-import hashlib
-import inspect
 from math import cos, sin
 
 import numpy as np
@@ -40,19 +38,22 @@ from softimpact_cli.systems.duffing import (
     K1,
     K2,
     KC,
-    NO_TENSION,
+    LAW,
     SIN_PHI,
+    STOP,
     C,
     D,
     F,
     W,
     pack_pair,
 )
+from softimpact_cli.systems.stops import COUPLING_SIZE
 from tests import naive
 
-from .helpers import DUFFING_PAIR
+from .helpers import DUFFING_PAIR, stable_identity
 
-STOP_WORK = 12  # packed after the pair's parameters: 1.0 = W integrates the whole stop force
+# packed after the pair's parameters: 1.0 = W integrates the whole stop force
+STOP_WORK = STOP + COUPLING_SIZE
 
 
 def pack_work_pair(values) -> np.ndarray:
@@ -66,7 +67,7 @@ def work_rhs(t, y, p, mode, out):
     x1, v1, x2, v2 = y[0], y[1], y[2], y[3]
     fc = 0.0
     power = 0.0
-    if mode & 1 and (p[NO_TENSION] == 0.0 or mode & 2):
+    if mode & 1 and (p[LAW] == 0.0 or mode & 2):
         fc = p[KC] * (x1 - x2 - p[D]) + p[CC] * (v1 - v2)
         if p[STOP_WORK] != 0.0:
             power = fc * (v1 - v2)
@@ -93,7 +94,7 @@ def work_surfaces(p: np.ndarray) -> Surfaces:
     A = [[1.0, 0.0, -1.0, 0.0, 0.0]]
     b = [-p[D]]
     requires = {}
-    if p[NO_TENSION] != 0.0:
+    if p[LAW] != 0.0:
         A.append([p[KC], p[CC], -p[KC], -p[CC], 0.0])
         b.append(-p[KC] * p[D])
         requires[1] = 0
@@ -101,21 +102,8 @@ def work_surfaces(p: np.ndarray) -> Surfaces:
                     ("contact", "stop force")[: len(A)])
 
 
-def _stable_identity(*dispatchers):
-    """Give the test's jitted functions a UUID made of their name and source (and of the
-    packed-parameter layout they read), as ``kernels.numba_cache.stabilise`` does for the
-    package: the kernels' disk cache, specialised on these functions, is then reused by
-    the next test run instead of growing by one entry per process, and a changed source
-    gets a new identity instead of stale cached code."""
-    layout = repr((C, K1, K2, F, W, D, KC, CC, COS_PHI, SIN_PHI, NO_TENSION, STOP_WORK))
-    for disp in dispatchers:
-        text = inspect.getsource(disp.py_func) + layout
-        digest = hashlib.sha1(text.encode()).hexdigest()[:16]
-        if getattr(disp, "_MemoMixin__uuid", None) is None:
-            disp._set_uuid(f"tests:{disp.py_func.__module__}.{disp.__name__}:{digest}")
-
-
-_stable_identity(work_rhs, work_jacobian)
+stable_identity(repr((C, K1, K2, F, W, D, KC, CC, COS_PHI, SIN_PHI, LAW, STOP_WORK)),
+                work_rhs, work_jacobian)
 
 WORK_PAIR = System(
     model="duffing-work",
