@@ -158,6 +158,39 @@ def test_run_a_basins_plane_in_memory_as_the_cli_writes_it(tmp_path):
     assert ds.attrs["executor"] == "local pool, 2 workers"
 
 
+def small_example(kind: str) -> dict:
+    """``softimpact example KIND`` as a dict, cut down to seconds."""
+    from softimpact_cli.examples import EXAMPLES
+
+    doc = tomllib.loads(EXAMPLES[kind])
+    if kind == "stability":
+        doc["grid"]["c_c"] = [2.0, 10.0]
+        doc["initial_conditions"].update(n=12, t0="random")  # per-sample start times
+    if kind == "map":
+        doc["grid"] = {"d": [4.0, 20.0], "phi": [0.0, 3.0]}
+        doc["initial_conditions"]["n"] = 8
+    if kind in ("stability", "map"):
+        doc["catalogue"] = {"grid": 4, "random": 20}
+    if kind == "dcrit":
+        doc["grid"]["phi"]["num"] = 8
+    if kind == "bifurcation":
+        doc["analysis"].update(start=12.0, stop=10.0, step=1.0)
+    return doc
+
+
+@pytest.mark.slow  # 5-10 s each on a busy 2-core machine
+@pytest.mark.parametrize("kind", ["stability", "map", "dcrit", "bifurcation"])
+def test_run_every_other_kind_as_the_cli_writes_it(kind, tmp_path):
+    doc = small_example(kind)
+    sweep = kind in ("stability", "map")
+    ds = si.run(doc, workers=2, **({"chunk_size": 5} if sweep else {}))
+    cli = cli_result(tmp_path, si.load_scene(doc).text, "--workers", "1",
+                     *(("--chunk-size", "5") if sweep else ()))
+    assert_same_data(ds, cli)
+    assert ds.attrs["analysis"] == kind and ds.attrs["scene_sha256"] == cli.attrs[
+        "scene_sha256"]
+
+
 def test_run_quick_and_resolution_shrink_as_the_cli_flags_do():
     ds = si.run({**PLANE, "initial_conditions": {**PLANE["initial_conditions"],
                                                  "resolution": [30, 30]}},
