@@ -28,10 +28,13 @@ import os
 import warnings
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .config import ConfigError, Scene, check_writable, parse_scene, result_path
 from .config import load_scene as load_scene_file
+
+if TYPE_CHECKING:  # importing the package must not import xarray
+    import xarray as xr
 
 __all__ = ["ConfigError", "load_scene", "open_result", "run", "shrink_scene", "sweep"]
 
@@ -113,7 +116,7 @@ def _progress(progress: bool | Callable | None, unit: str) -> Callable | None:
 def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
         workers: int | None = None, scheduler: str | None = None,
         chunk_size: int | None = None, progress: bool | Callable = False,
-        echo: Callable[[str], None] | None = None):
+        echo: Callable[[str], None] | None = None) -> xr.Dataset:
     """Run any scene and return its ``xarray.Dataset``; no file is read or written.
 
     ``scene``: a Scene or anything :func:`load_scene` takes. ``quick`` and
@@ -143,7 +146,8 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
 def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: bool = False,
           overwrite: bool = False, workers: int | None = None, scheduler: str | None = None,
           chunk_size: int | None = None, quick: bool = False, resolution: int | None = None,
-          progress: bool | Callable = False, echo: Callable[[str], None] | None = None):
+          progress: bool | Callable = False, echo: Callable[[str], None] | None = None
+          ) -> xr.Dataset:
     """Run a scene into its result file ``out`` (default: its [output] path), as
     ``softimpact sweep`` does, and return the complete dataset.
 
@@ -186,7 +190,7 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     return ds
 
 
-def open_result(path: str | os.PathLike):
+def open_result(path: str | os.PathLike) -> xr.Dataset:
     """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed).
     ConfigError when it is missing, a directory, or not a softimpact result."""
     from .store import open_result as read

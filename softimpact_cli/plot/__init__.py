@@ -21,8 +21,12 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:  # matplotlib is imported inside the functions that draw
+    from matplotlib.figure import Figure
 
 DEFAULT_DPI = 150
 # TeX symbols of the parameters named in a result's ``parameters`` attribute
@@ -231,7 +235,7 @@ def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
 # ---------------------------------------------------------------- one function per kind
 
 
-def trajectory(ds, ax=None, *, last_periods: int | None = None):
+def trajectory(ds, ax=None, *, last_periods: int | None = None) -> Figure:
     """Time series, phase portraits and Poincaré points of a trajectory result
     (``last_periods`` drawn strongly as the steady state; default a quarter, <= 20).
     Panels: 2 (one body) or 6 (a pair, the last a text summary)."""
@@ -240,14 +244,14 @@ def trajectory(ds, ax=None, *, last_periods: int | None = None):
     return draw_trajectory(_expect(ds, "trajectory"), last_periods, ax)
 
 
-def catalogue(ds, ax=None):
+def catalogue(ds, ax=None) -> Figure:
     """Attractors on the phase plane, then one panel per combination."""
     from .catalogue_figure import draw_catalogue
 
     return draw_catalogue(_expect(ds, "catalogue"), ax)
 
 
-def basins(ds, ax=None, *, max_panels: int = 36):
+def basins(ds, ax=None, *, max_panels: int = 36) -> Figure:
     """Basins of attraction of a plane sweep, one panel per grid point (at most
     ``max_panels``); an Axes for a result of one grid point."""
     from .basins_figure import draw_basins
@@ -259,7 +263,7 @@ def basins(ds, ax=None, *, max_panels: int = 36):
     return draw_basins(ds, max_panels, ax)
 
 
-def stability(ds, ax=None, *, against: str | None = None):
+def stability(ds, ax=None, *, against: str | None = None) -> Figure:
     """Basin-stability curves with 95% Wilson bands against the grid axis ``against``
     (default: the swept one). One panel."""
     from ..analysis.stability import basin_stability
@@ -270,7 +274,7 @@ def stability(ds, ax=None, *, against: str | None = None):
                           ax)
 
 
-def dcrit(ds, ax=None, *, combination: str | None = None):
+def dcrit(ds, ax=None, *, combination: str | None = None) -> Figure:
     """Critical-distance curves with the surviving-combination regions, then the
     x1 - x2 traces (only ``combination``'s when given: a name of
     ``ds.combination_label``)."""
@@ -282,14 +286,14 @@ def dcrit(ds, ax=None, *, combination: str | None = None):
     return draw_dcrit(ds, combination, ax)
 
 
-def bifurcation(ds, ax=None):
+def bifurcation(ds, ax=None) -> Figure:
     """Section displacements of the left, then the right body against d."""
     from .bifurcation_figure import draw_bifurcation
 
     return draw_bifurcation(_expect(ds, "bifurcation"), ax)
 
 
-def map(ds, ax=None):  # noqa: A001 (named after the kind, as the CLI's `plot map`)
+def map(ds, ax=None) -> Figure:  # noqa: A001 (named after the kind, as the CLI's `plot map`)
     """Predicted and found numbers of coexisting solutions over the two swept axes,
     then their difference."""
     from .map_figure import draw_map
@@ -297,7 +301,7 @@ def map(ds, ax=None):  # noqa: A001 (named after the kind, as the CLI's `plot ma
     return draw_map(_expect(ds, "map"), ax)
 
 
-def design(ds, ax=None):
+def design(ds, ax=None) -> Figure:
     """The (d, phi) plane with the target-only region, a zoom around the pick, the
     basin stability at the pick, the perturbations."""
     from .design_figure import draw_design
