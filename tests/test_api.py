@@ -203,7 +203,9 @@ def test_run_quick_and_resolution_shrink_as_the_cli_flags_do():
         si.run(PLANE, resolution=0.5)
 
 
-def test_progress_is_off_unless_asked_and_counts_every_trajectory(capsys):
+def test_progress_is_off_unless_asked_and_counts_every_trajectory(capsys, tmp_path,
+                                                                   monkeypatch):
+    monkeypatch.chdir(tmp_path)  # the scene's [output] path would be results/scene.h5
     seen = []
 
     def progress(total, initial=0):
@@ -216,6 +218,7 @@ def test_progress_is_off_unless_asked_and_counts_every_trajectory(capsys):
     assert capsys.readouterr().err == ""  # quiet by default
     si.run(PLANE, workers=1, progress=True)  # a tqdm.auto bar (text on stderr here)
     assert "80/80" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []  # run writes nothing
 
 
 # ---------------------------------------------------------------- sweep, open_result
