@@ -1,3 +1,28 @@
-"""softimpact: multistability of oscillators coupled through soft impacts."""
+"""softimpact: multistability of oscillators coupled through soft impacts.
+
+The Python API (see ``api``): ``load_scene``, ``run``, ``sweep``, ``open_result`` and the
+figures ``plot.<kind>(ds, ax=None)``, e.g. ``import softimpact_cli as si;
+si.plot.basins(si.run(si.load_scene("configs/demo_basins.toml"), quick=True))``.
+Importing the package loads neither matplotlib nor xarray; ``plot`` is imported on
+first use.
+"""
 
 __version__ = "0.1.0"
+
+# The package ``sweep`` first: importing a submodule binds it as an attribute of this
+# package, which would replace the function of the same name bound below if it came
+# later. So ``softimpact_cli.sweep`` is the function; ``from softimpact_cli.sweep import
+# run_sweep`` works as before.
+from . import sweep as _sweep_package  # noqa: E402, F401
+from .api import ConfigError, load_scene, open_result, run, shrink_scene, sweep  # noqa: E402
+
+__all__ = ["ConfigError", "load_scene", "open_result", "plot", "run", "shrink_scene", "sweep"]
+
+
+def __getattr__(name: str):
+    # the figures import matplotlib: only when a notebook first asks for them
+    if name == "plot":
+        import importlib
+
+        return importlib.import_module(".plot", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

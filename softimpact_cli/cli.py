@@ -8,7 +8,6 @@ from __future__ import annotations
 import functools
 import json
 import sys
-import warnings
 from pathlib import Path
 
 import click
@@ -31,24 +30,9 @@ def _user_errors(func):
 
 
 def _open(path: str):
-    from .store import open_result
+    from .api import open_result
 
-    p = Path(path)
-    if p.is_dir():
-        raise ConfigError(f"{path}: is a directory, not a result file")
-    if not p.is_file():
-        raise ConfigError(f"{path}: no such result file")
-    try:
-        with warnings.catch_warnings():  # a foreign HDF5 file: the reader's warnings are noise
-            warnings.simplefilter("ignore")
-            ds = open_result(p)
-    except Exception as exc:  # any reader failure is the file's fault, said in one line
-        raise ConfigError(f"{path}: not a softimpact result file ({exc.__class__.__name__})"
-                          ) from None
-    if "analysis" not in ds.attrs or "scene_text" not in ds.attrs:
-        raise ConfigError(f"{path}: not a softimpact result file (an HDF5 file without the "
-                          "'analysis' and 'scene_text' attributes softimpact writes)")
-    return ds
+    return open_result(path)
 
 
 def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
@@ -189,16 +173,11 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
       softimpact sweep configs/demo_basins.toml -o results/demo.h5
       softimpact sweep configs/fig04_duffing_catalogue.toml --quick
     """
-    from .config import quick as quick_scene
+    from .api import shrink_scene
     from .kinds import SWEEP_KINDS
     from .kinds import get as kind_of
 
-    sc = load_scene(scene)
-    if quick:
-        sc = quick_scene(sc)
-    if resolution:
-        sc = quick_scene(sc, plane=resolution, samples=10**12, flag=f"--resolution {resolution}",
-                         axis=None)
+    sc = shrink_scene(load_scene(scene), quick, resolution)
     out = result_path(sc, output)
     key = "-o/--output" if output else "[output] path"
     check_writable(out, scene if not output else "command line", key)
@@ -214,16 +193,16 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     from .analysis.warmup import announce_compilation
     announce_compilation(sc)
     if kind_of(sc.analysis.kind).sweep:
-        from .sweep import run_sweep
+        from .api import sweep as run_to_file
         from .sweep.interrupt import modified, sweep_kept
 
         flags = ("--quick",) * quick + (("--resolution", str(resolution)) if resolution else ())
         click.get_current_context().meta["softimpact.kept"] = functools.partial(
             sweep_kept, out, scene, flags, modified(out))
 
-        ds = run_sweep(sc, out, workers=workers, scheduler=scheduler, resume=resume,
-                       overwrite=overwrite, chunk_size=chunk_size, echo=echo,
-                       progress=None if quiet else _progress_bar)
+        ds = run_to_file(sc, out, workers=workers, scheduler=scheduler, resume=resume,
+                         overwrite=overwrite, chunk_size=chunk_size, echo=echo,
+                         progress=None if quiet else _progress_bar)
         click.echo(f"{sc.analysis.kind}: {ds.attrs['n']} trajectories "
                    f"({ds.attrs['wall_s']:.1f} s) -> {out}")
         if check_n:
@@ -239,22 +218,14 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
 def _run_whole(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool):
     """Run a scene that is not a sweep (every kind but basins, stability, map), write its
     result, print what its kind reports and the outcome line; return the dataset."""
+    from .api import sweep as run_to_file
     from .kinds import get as kind_of
-    from .kinds.run import run_scene
-    from .store import write_result
-    from .store.lock import output_lock
-    from .store.provenance import command_line
 
     kind = kind_of(sc.analysis.kind)
-    # held for the whole run: a second run on the same output is refused at once, not
-    # after it has computed everything
-    with output_lock(out, command_line()):
-        if out.exists() and not overwrite:
-            raise ConfigError(f"{out}: result exists; pass --overwrite to replace it")
-        ds = run_scene(sc, progress=None if quiet else functools.partial(
-            _progress_bar, unit=kind.progress_unit), workers=workers, scheduler=scheduler,
-            echo=(lambda s: None) if quiet else (lambda s: click.echo(s, err=True)))
-        write_result(ds, out)
+    ds = run_to_file(sc, out, overwrite=overwrite, workers=workers, scheduler=scheduler,
+                     progress=None if quiet else functools.partial(
+                         _progress_bar, unit=kind.progress_unit),
+                     echo=(lambda s: None) if quiet else (lambda s: click.echo(s, err=True)))
     if kind.report is not None:
         click.echo(kind.report(ds))
     click.echo(f"{sc.analysis.kind}: {ds.attrs.get('outcome', 'done')}"
@@ -294,7 +265,7 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
     Example:
       softimpact design configs/design_duffing.toml --quick -o results/design_quick.h5
     """
-    from .config import quick as quick_scene
+    from .api import shrink_scene
     from .config.design import with_target
 
     sc = load_scene(scene)
@@ -302,7 +273,7 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
         raise ConfigError(f"{scene}: [analysis] kind: must be \"design\" for this command, "
                           f"got {sc.analysis.kind!r}")
     sc = with_target(sc, target) if target is not None else sc
-    sc = quick_scene(sc) if quick else sc
+    sc = shrink_scene(sc, quick)
     out = result_path(sc, output)
     check_writable(out, scene if not output else "command line",
                    "-o/--output" if output else "[output] path")
@@ -425,20 +396,24 @@ _dpi_option = click.option("--dpi", type=click.IntRange(min=10, max=2400), defau
                            show_default=True, help="Resolution of raster figures (PNG).")
 
 
-def _draw(result: str, output: str, kind: str, draw, complete: bool = False,
+def _draw(result: str, output: str, dpi: int, kind: str, draw, complete: bool = False,
           accept=None, expected: str | None = None) -> None:
     """Open RESULT, check that it holds a ``kind`` analysis (or passes ``accept``, a
-    predicate on its attributes, described by ``expected``), draw it to OUTPUT."""
+    predicate on its attributes, described by ``expected``), draw it with ``draw(ds)``
+    (a ``plot`` function, returning the Figure) and save it to OUTPUT."""
     ds = _open(result)
     ok = accept(ds.attrs) if accept else ds.attrs.get("analysis") == kind
     if not ok or (complete and int(ds.attrs.get("complete", 0)) != 1):
         what = expected or (f"a complete {kind} result" if complete else f"a {kind} result")
         raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not {what}")
     check_writable(output, "command line", "-o/--output")
+    from .plot import save
+
     try:
-        click.echo(f"figure -> {draw(ds)}")
+        path = save(draw(ds), output, dpi)
     except ValueError as exc:
         raise ConfigError(f"{result}: {exc}") from None
+    click.echo(f"figure -> {path}")
 
 
 @plot.command("trajectory")
@@ -451,9 +426,10 @@ def _draw(result: str, output: str, kind: str, draw, complete: bool = False,
 @_user_errors
 def plot_trajectory_cmd(result, output, dpi, last_periods):
     """Time series, phase portraits and Poincare points of a trajectory RESULT."""
-    from .plot.trajectory import plot_trajectory
+    from . import plot
 
-    _draw(result, output, "trajectory", lambda ds: plot_trajectory(ds, output, last_periods, dpi))
+    _draw(result, output, dpi, "trajectory",
+          lambda ds: plot.trajectory(ds, last_periods=last_periods))
 
 
 @plot.command("basins")
@@ -466,9 +442,9 @@ def plot_trajectory_cmd(result, output, dpi, last_periods):
 @_user_errors
 def plot_basins_cmd(result, output, dpi, max_panels):
     """Basins of attraction of a plane sweep RESULT, one panel per grid point."""
-    from .plot.basins import plot_basins
+    from . import plot
 
-    _draw(result, output, "basins", lambda ds: plot_basins(ds, output, max_panels, dpi),
+    _draw(result, output, dpi, "basins", lambda ds: plot.basins(ds, max_panels=max_panels),
           complete=True, accept=lambda a: a.get("ic_kind") == "plane",
           expected="a complete sweep over a plane of initial conditions")
 
@@ -483,16 +459,16 @@ def plot_basins_cmd(result, output, dpi, max_panels):
 @_user_errors
 def plot_dcrit_cmd(result, output, dpi, combination):
     """Critical-distance curves, surviving-combination regions and x1 - x2 traces."""
-    from .plot.dcrit import plot_dcrit
+    from . import plot
 
     def draw(ds):
         names = [str(n) for n in ds["combination_label"].values]
         if combination is not None and combination not in names:
             raise ConfigError(f"--combination: {combination!r} is not one of "
                               f"{', '.join(names)}")
-        return plot_dcrit(ds, output, combination, dpi)
+        return plot.dcrit(ds, combination=combination)
 
-    _draw(result, output, "dcrit", draw)
+    _draw(result, output, dpi, "dcrit", draw)
 
 
 @plot.command("stability")
@@ -505,15 +481,10 @@ def plot_dcrit_cmd(result, output, dpi, combination):
 @_user_errors
 def plot_stability_cmd(result, output, dpi, against):
     """Basin-stability curves with 95% Wilson bands of a stability RESULT."""
-    from .analysis.stability import basin_stability
-    from .plot.stability import plot_stability
+    from . import plot
 
-    def draw(ds):
-        swept = str(ds.attrs.get("grid_swept", "")).split()
-        axis = against or (swept[0] if swept else "c_c")
-        return plot_stability(ds, basin_stability(ds), output, axis, dpi)
-
-    _draw(result, output, "stability", draw, complete=True)
+    _draw(result, output, dpi, "stability", lambda ds: plot.stability(ds, against=against),
+          complete=True)
 
 
 @plot.command("bifurcation")
@@ -524,9 +495,9 @@ def plot_stability_cmd(result, output, dpi, against):
 @_user_errors
 def plot_bifurcation_cmd(result, output, dpi):
     """Section displacements of both bodies against d, destruction points marked."""
-    from .plot.bifurcation import plot_bifurcation
+    from . import plot
 
-    _draw(result, output, "bifurcation", lambda ds: plot_bifurcation(ds, output, dpi))
+    _draw(result, output, dpi, "bifurcation", plot.bifurcation)
 
 
 @plot.command("map")
@@ -537,9 +508,9 @@ def plot_bifurcation_cmd(result, output, dpi):
 @_user_errors
 def plot_map_cmd(result, output, dpi):
     """Predicted and found numbers of coexisting solutions over two parameters."""
-    from .plot.maps import plot_map
+    from . import plot
 
-    _draw(result, output, "map", lambda ds: plot_map(ds, output, dpi), complete=True)
+    _draw(result, output, dpi, "map", plot.map, complete=True)
 
 
 @plot.command("design")
@@ -551,9 +522,9 @@ def plot_map_cmd(result, output, dpi):
 def plot_design_cmd(result, output, dpi):
     """The (d, phi) plane with the target-only region, the pick and runners-up, beside
     the basin stability at the pick and under perturbations."""
-    from .plot.design import plot_design
+    from . import plot
 
-    _draw(result, output, "design", lambda ds: plot_design(ds, output, dpi))
+    _draw(result, output, dpi, "design", plot.design)
 
 
 @plot.command("catalogue")
@@ -564,9 +535,9 @@ def plot_design_cmd(result, output, dpi):
 @_user_errors
 def plot_catalogue_cmd(result, output, dpi):
     """Attractors on the phase plane and one panel per combination of a catalogue RESULT."""
-    from .plot.catalogue import plot_catalogue
+    from . import plot
 
-    _draw(result, output, "catalogue", lambda ds: plot_catalogue(ds, output, dpi))
+    _draw(result, output, dpi, "catalogue", plot.catalogue)
 
 
 @main.command()

@@ -173,11 +173,17 @@ def _read_analysis(sec: Section, ctx: SceneContext):
     return analysis
 
 
+def scene_stem(source: str) -> str:
+    """The name a result takes from its scene: the file's stem, "scene" for a scene given
+    as text or a mapping (source "<string>", "<dict>")."""
+    return "scene" if source.startswith("<") else Path(source).stem
+
+
 def _read_output(source: str, doc: dict, base: Path) -> Path:
     """[output] path; a value ending in "/" names a directory: the result is then
     ``<directory>/<scene stem>.h5`` (``path = "newdir/"`` writes newdir/<stem>.h5)."""
     sec = Section(source, "output", doc.get("output", {}))
-    stem = Path(source).stem if source != "<string>" else "scene"
+    stem = scene_stem(source)
     value = sec.raw("path", f"results/{stem}.h5")
     if not isinstance(value, str) or not value:
         raise sec.fail("path", f"must be a file path string, got {value!r}")
@@ -290,7 +296,7 @@ def result_path(scene: Scene, option: str | None) -> Path:
     """
     if option is None:
         return scene.output
-    stem = Path(scene.source).stem if scene.source != "<string>" else "scene"
+    stem = scene_stem(scene.source)
     try:
         return output_path(option, stem)
     except ValueError as exc:

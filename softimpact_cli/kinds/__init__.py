@@ -9,7 +9,8 @@ CLI, ``run``, ``check``, ``info`` and the sweep runner look a kind up here; none
 branches on a kind's name.
 
 Adding a kind: a module here with its settings dataclass and its ``KINDS`` tuple, its
-line in :data:`MODULES`, and a figure function in ``plot/`` (plus its ``plot`` command).
+line in :data:`MODULES`, and a figure: ``plot/<kind>_figure.py`` and its function
+``plot.<kind>(ds, ax=None)`` in ``plot/__init__.py`` (plus its ``plot`` command).
 The functions a kind names from later layers (analysis, sweep, store, plot) are imported
 when called, so that reading a scene imports no analysis code.
 """

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import time
-
-import xarray as xr
+from typing import TYPE_CHECKING
 
 from ..config import Scene
 from . import get as kind_of
+
+if TYPE_CHECKING:  # importing softimpact_cli imports this module: xarray only when run
+    import xarray as xr
 
 
 def run_scene(scene: Scene, progress=None, **options) -> xr.Dataset:

@@ -1,8 +1,19 @@
-"""Figures drawn from result files. Plots read the store and never integrate.
+"""Figures of results, one function per analysis kind: ``plot.<kind>(ds, ax=None, ...)``.
 
-Each kind has a ``draw_*(ds, ...)`` that returns a matplotlib Figure (built without
-pyplot, so importing or drawing selects no backend and a notebook can show it) and a
-``plot_*(ds, out, ...)`` that draws and writes the file.
+``ds`` is a result (``softimpact_cli.kinds.run`` or ``open_result``); each function returns a
+matplotlib Figure and never writes a file or changes the backend: without ``ax`` it
+builds a new Figure without pyplot (so it is not shown twice in Jupyter; display it with
+``display(fig)``, or draw on your own axes). ``ax`` says where to draw instead:
+
+- an Axes: for a figure of one panel (basins of one grid point, stability; trajectory,
+  dcrit and catalogue when they have one panel);
+- a sequence of Axes (``fig.subplots(...)``, nested or flat): one per panel, in the
+  order each function's docstring gives;
+- a Figure or SubFigure (``fig.subfigures(...)``): the kind's own layout drawn in it.
+
+Figure-level text (a title over several panels, colour bars, a shared legend) goes to the
+figure or subfigure the axes belong to. The command line's ``plot`` calls the same
+functions and saves with ``save``. Plots read results and never integrate.
 """
 
 from __future__ import annotations
@@ -10,8 +21,12 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:  # matplotlib is imported inside the functions that draw
+    from matplotlib.figure import Figure
 
 DEFAULT_DPI = 150
 # TeX symbols of the parameters named in a result's ``parameters`` attribute
@@ -26,6 +41,54 @@ def new_figure(**kwargs):
 
     kwargs.setdefault("layout", "constrained")
     return Figure(**kwargs)
+
+
+def is_figure(target) -> bool:
+    from matplotlib.figure import FigureBase
+
+    return isinstance(target, FigureBase)  # a Figure or a SubFigure
+
+
+def root_figure(container):
+    """The top-level Figure of a Figure, SubFigure or Axes."""
+    from matplotlib.figure import Figure
+
+    fig = container
+    while not isinstance(fig, Figure):
+        fig = fig.figure if is_figure(fig) else fig.get_figure()
+    return fig
+
+
+def place_panels(ax, shape: tuple[int, int], order: list[tuple[int, int]], figsize,
+                 **subplots):
+    """(container, panels): where a kind's figure draws its ``len(order)`` panels.
+
+    The kind's own layout is a grid of ``shape`` (rows, columns) with panel k at grid
+    cell ``order[k]``. ``ax`` None: a new Figure of ``figsize``, its grid from
+    ``subplots(*shape, squeeze=False, **subplots)``; a Figure or SubFigure: that grid in
+    it; cells not in ``order`` are switched off. An Axes (for one panel) or a sequence of
+    exactly ``len(order)`` Axes: those. ``container`` is the figure or subfigure that
+    receives figure-level text (suptitle, colour bars, legends).
+    """
+    import numpy as np
+
+    n = len(order)
+    if ax is None or is_figure(ax):
+        container = new_figure(figsize=figsize) if ax is None else ax
+        grid = container.subplots(*shape, squeeze=False, **subplots)
+        for r, c in np.ndindex(*shape):
+            if (r, c) not in order:
+                grid[r, c].axis("off")
+        return container, [grid[r, c] for r, c in order]
+    from matplotlib.axes import Axes
+
+    given = [ax] if isinstance(ax, Axes) else list(np.ravel(np.asarray(ax, dtype=object)))
+    if len(given) != n or not all(isinstance(a, Axes) for a in given):
+        what = "an Axes" if isinstance(ax, Axes) else f"{len(given)} items"
+        raise ValueError(f"ax: this figure has {n} panel{'s' if n > 1 else ''}; pass "
+                         f"{'one Axes or ' if n == 1 else ''}a sequence of {n} Axes or a "
+                         f"Figure (got {what})")
+    return given[0].figure, given
 
 
 def save(fig, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
@@ -168,3 +231,92 @@ def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:
     axis.set_major_locator(MultipleLocator(step * np.pi))
     axis.set_major_formatter(FuncFormatter(
         lambda x, _: "0" if abs(x) < 1e-12 else f"${x / np.pi:.{digits}f}\\pi$"))
+
+
+# ---------------------------------------------------------------- one function per kind
+
+
+def trajectory(ds, ax=None, *, last_periods: int | None = None) -> Figure:
+    """Time series, phase portraits and Poincaré points of a trajectory result
+    (``last_periods`` drawn strongly as the steady state; default a quarter, <= 20).
+    Panels: 2 (one body) or 6 (a pair, the last a text summary)."""
+    from .trajectory_figure import draw_trajectory
+
+    return draw_trajectory(_expect(ds, "trajectory"), last_periods, ax)
+
+
+def catalogue(ds, ax=None) -> Figure:
+    """Attractors on the phase plane, then one panel per combination."""
+    from .catalogue_figure import draw_catalogue
+
+    return draw_catalogue(_expect(ds, "catalogue"), ax)
+
+
+def basins(ds, ax=None, *, max_panels: int = 36) -> Figure:
+    """Basins of attraction of a plane sweep, one panel per grid point (at most
+    ``max_panels``); an Axes for a result of one grid point."""
+    from .basins_figure import draw_basins
+
+    if ds.attrs.get("ic_kind") != "plane":
+        raise ValueError(f"plot.basins: needs a sweep over a plane of initial conditions, "
+                         f"got a {ds.attrs.get('analysis')!r} result with "
+                         f"{ds.attrs.get('ic_kind')!r} initial conditions")
+    return draw_basins(ds, max_panels, ax)
+
+
+def stability(ds, ax=None, *, against: str | None = None) -> Figure:
+    """Basin-stability curves with 95% Wilson bands against the grid axis ``against``
+    (default: the swept one). One panel."""
+    from ..analysis.stability import basin_stability
+    from .stability_figure import draw_stability
+
+    swept = str(_expect(ds, "stability").attrs.get("grid_swept", "")).split()
+    return draw_stability(ds, basin_stability(ds), against or (swept[0] if swept else "c_c"),
+                          ax)
+
+
+def dcrit(ds, ax=None, *, combination: str | None = None) -> Figure:
+    """Critical-distance curves with the surviving-combination regions, then the
+    x1 - x2 traces (only ``combination``'s when given: a name of
+    ``ds.combination_label``)."""
+    from .dcrit_figure import draw_dcrit
+
+    names = [str(n) for n in _expect(ds, "dcrit")["combination_label"].values]
+    if combination is not None and combination not in names:
+        raise ValueError(f"combination: {combination!r} is not one of {', '.join(names)}")
+    return draw_dcrit(ds, combination, ax)
+
+
+def bifurcation(ds, ax=None) -> Figure:
+    """Section displacements of the left, then the right body against d."""
+    from .bifurcation_figure import draw_bifurcation
+
+    return draw_bifurcation(_expect(ds, "bifurcation"), ax)
+
+
+def map(ds, ax=None) -> Figure:  # noqa: A001 (named after the kind, as the CLI's `plot map`)
+    """Predicted and found numbers of coexisting solutions over the two swept axes,
+    then their difference."""
+    from .map_figure import draw_map
+
+    return draw_map(_expect(ds, "map"), ax)
+
+
+def design(ds, ax=None) -> Figure:
+    """The (d, phi) plane with the target-only region, a zoom around the pick, the
+    basin stability at the pick, the perturbations."""
+    from .design_figure import draw_design
+
+    return draw_design(_expect(ds, "design"), ax)
+
+
+KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
+         "design")  # the functions above, by analysis kind
+
+
+def _expect(ds, kind: str):
+    """``ds`` when it holds a ``kind`` result (or says nothing), else a ValueError."""
+    found = ds.attrs.get("analysis")
+    if found is not None and found != kind:
+        raise ValueError(f"plot.{kind}: ds holds a {found!r} result, not a {kind} result")
+    return ds

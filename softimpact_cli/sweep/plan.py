@@ -80,16 +80,21 @@ class Plan:
                 f"conditions = {self.n_total} trajectories in {self.n_chunks} chunks of "
                 f"<= {self.chunk_size}; result at most {_size(self.result_bytes)}")
 
-    def check_resources(self, out: Path, source: str) -> None:
-        """Refuse a result that would not fit in memory or on disk (estimates are upper
-        bounds: the result is stored compressed). Call after ``check_writable``, which
-        finds the paths that cannot be written at all."""
+    def check_memory(self, source: str) -> None:
+        """Refuse a result that would not fit in memory while assembled."""
         need = self.result_bytes
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
         if 3 * need > memory:
             raise ConfigError(f"{source}: [grid]/[initial_conditions]: the result needs at "
                               f"most {_size(3 * need)} of memory while assembled, and this "
                               f"machine has {_size(memory)}; reduce the grid or resolution")
+
+    def check_resources(self, out: Path, source: str) -> None:
+        """Refuse a result that would not fit in memory or on disk (estimates are upper
+        bounds: the result is stored compressed). Call after ``check_writable``, which
+        finds the paths that cannot be written at all."""
+        self.check_memory(source)
+        need = self.result_bytes
         folder = out.parent if str(out.parent) else Path(".")
         while not folder.exists():
             folder = folder.parent

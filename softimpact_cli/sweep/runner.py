@@ -5,6 +5,7 @@ from __future__ import annotations
 import datetime as _dt
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -102,6 +103,58 @@ def sweep_context(scene: Scene, catalogues: dict, names: tuple[str, ...],
     )
 
 
+@dataclass(frozen=True)
+class SweepInputs:
+    """What a sweep computes before its chunks: the catalogue per phi (``first``: the one
+    the result stores), the label names, the random start times (None unless t0 is random)
+    and the workers' context."""
+
+    catalogues: dict
+    names: tuple[str, ...]
+    first: Catalogue
+    t0_per_sample: np.ndarray | None
+    context: SweepContext
+
+
+def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
+                   ) -> SweepInputs:
+    """The catalogues, names and worker context of a sweep scene (says what it found)."""
+    catalogues, names = prepare_catalogues(scene)
+    if kind_of(scene.analysis.kind).needs_attractors:  # stop before any chunk or file
+        require_attractors(next(iter(catalogues.values())), scene.analysis.kind,
+                           str(scene.source))
+    echo(f"catalogue: {len(names)} solutions: {', '.join(names)}" if names else
+         "catalogue: no non-impacting solution found (every label will be impacting, "
+         "unresolved or diverged)")
+    ic = scene.initial_conditions
+    t0_per_sample = None
+    if ic.t0 is None:
+        t0_per_sample = ic.random_t0(2 * np.pi / float(scene.values["w"]))
+    context = sweep_context(scene, catalogues, names, t0_per_sample)
+    return SweepInputs(catalogues, names, next(iter(catalogues.values())), t0_per_sample,
+                       context)
+
+
+def keep_first_orbits(orbits: dict, found: dict) -> None:
+    """Merge a chunk's representative orbits into ``orbits``: per (grid point, code) the
+    one of the lowest flat index, whatever order the chunks finished in."""
+    for key, (flat, pts) in found.items():
+        if key not in orbits or flat < orbits[key][0]:
+            orbits[key] = (flat, pts)
+
+
+def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: dict
+                     ) -> xr.Dataset:
+    """The sweep's dataset from its flat arrays (RESULT_FIELDS, plan order) and orbits:
+    labels, the kind's extra variables (``after_sweep``) and the catalogue."""
+    ds = sweep_dataset(scene, arrays, orbits, inputs.names, inputs.t0_per_sample)
+    after = kind_of(scene.analysis.kind).after_sweep  # e.g. the map's solution counts
+    if after is not None:
+        ds = after(ds, scene, inputs.first)
+    catalogue_vars = catalogue_dataset(inputs.first, scene.system, scene.integrator)
+    return xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
+
+
 MAX_ROUNDS = 4  # rounds of chunk computing (later ones redo parts lost during the run)
 
 
@@ -159,9 +212,7 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
             raise DamagedPart(f"chunk {index}: {why}") from None
         for key in RESULT_FIELDS:
             arrays[key][start:stop] = chunk[key]
-        for key, (flat, pts) in chunk["orbits"].items():
-            if key not in orbits or flat < orbits[key][0]:
-                orbits[key] = (flat, pts)
+        keep_first_orbits(orbits, chunk["orbits"])
         first, last = float(meta["session_started"]), float(meta["written"])
         sessions[first] = max(sessions.get(first, first), last)
     return arrays, orbits, sessions
@@ -229,20 +280,9 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     echo(plan.describe())
     echo(f"executor: {executor.describe()}")
 
-    catalogues, names = prepare_catalogues(scene)
-    if kind_of(scene.analysis.kind).needs_attractors:  # stop before any chunk or file
-        require_attractors(next(iter(catalogues.values())), scene.analysis.kind,
-                           str(scene.source))
-    echo(f"catalogue: {len(names)} solutions: {', '.join(names)}" if names else
-         "catalogue: no non-impacting solution found (every label will be impacting, "
-         "unresolved or diverged)")
-    ic = scene.initial_conditions
-    t0_per_sample = None
-    if ic.t0 is None:
-        t0_per_sample = ic.random_t0(2 * np.pi / float(scene.values["w"]))
-    context = sweep_context(scene, catalogues, names, t0_per_sample)
+    inputs = prepare_inputs(scene, echo)
+    context, first = inputs.context, inputs.first
     identity = RunIdentity(scene.sha256, plan.chunk_size, plan.n_total)
-    first = next(iter(catalogues.values()))
     good: dict = {}
     if not resume:
         if overwrite:
@@ -288,12 +328,7 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
                           "sweep runs (another program removing them?); run again with "
                           "--resume")
 
-    ds = sweep_dataset(scene, arrays, orbits, names, t0_per_sample)
-    after = kind_of(scene.analysis.kind).after_sweep  # e.g. the map's solution counts
-    if after is not None:
-        ds = after(ds, scene, first)
-    catalogue_vars = catalogue_dataset(first, scene.system, scene.integrator)
-    ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
+    ds = labelled_dataset(scene, inputs, arrays, orbits)
     # wall time and start over every session that contributed parts (a session counts
     # until its last part written; this one until now)
     now = time.time()

@@ -7,7 +7,7 @@ from click.testing import CliRunner
 from softimpact_cli.cli import main
 from softimpact_cli.store import write_result
 
-from .test_trajectory import trajectory
+from .test_trajectory_figure import trajectory
 
 
 def png_width(path) -> int:

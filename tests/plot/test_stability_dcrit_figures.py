@@ -4,8 +4,8 @@ import numpy as np
 import xarray as xr
 
 from softimpact_cli.analysis.stability import basin_stability
-from softimpact_cli.plot.dcrit import draw_dcrit
-from softimpact_cli.plot.stability import draw_stability
+from softimpact_cli.plot.dcrit_figure import draw_dcrit
+from softimpact_cli.plot.stability_figure import draw_stability
 
 NAMES = ["L1^1 R1-0^1", "L1^2 R1-0^1"]
 

@@ -3,19 +3,17 @@
 from __future__ import annotations
 
 from math import ceil
-from pathlib import Path
 
 import numpy as np
 
 from ..report.info import GRID_AXES, grid_dims, grid_point
 from . import (
-    DEFAULT_DPI,
     multiple_text,
-    new_figure,
     panel_letter,
     parameter_text,
     phase_text,
-    save,
+    place_panels,
+    root_figure,
     start_text,
     wrap_tex,
 )
@@ -99,10 +97,14 @@ def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) 
     return head + "\n" + ", ".join(common + ([params] if params else []))
 
 
-def draw_basins(ds, max_panels: int = 36):
+def draw_basins(ds, max_panels: int = 36, ax=None):
     """Categorical basin maps: one colour per label (fixed palette), the attractors'
     section points as ringed markers, per panel a legend pairing each basin's colour with
-    its attractor's marker and its share; returns the matplotlib Figure."""
+    its attractor's marker and its share; returns the matplotlib Figure.
+
+    One panel per grid point (in the grid's C order), three per row; ``ax``: an Axes
+    for a result of one grid point, one Axes per grid point, or a Figure (see ``plot``).
+    """
     from matplotlib.colors import ListedColormap
     from matplotlib.legend_handler import HandlerTuple
     from matplotlib.lines import Line2D
@@ -130,12 +132,13 @@ def draw_basins(ds, max_panels: int = 36):
     i0, i1 = variables.index(a0), variables.index(a1)
     ncols = min(3, n_panels)
     nrows = ceil(n_panels / ncols)
-    fig = new_figure(figsize=(4.6 * ncols, 5.0 * nrows + 0.6))
-    axs = fig.subplots(nrows, ncols, squeeze=False)
+    fig, panels = place_panels(ax, (nrows, ncols),
+                               [divmod(k, ncols) for k in range(n_panels)],
+                               figsize=(4.6 * ncols, 5.0 * nrows + 0.6))
     varying = varying_axes(ds)
     halo = _halo()
     for k, index in enumerate(np.ndindex(*grid_shape)):
-        ax = axs[k // ncols, k % ncols]
+        ax = panels[k]
         lab = label[index]
         img = np.vectorize(position.get)(lab)
         dx = (x[-1] - x[0]) / max(1, len(x) - 1) / 2
@@ -174,20 +177,13 @@ def draw_basins(ds, max_panels: int = 36):
                   loc="upper center", bbox_to_anchor=(0.5, -0.13),
                   ncols=min(3, len(handles)), frameon=False,
                   handler_map={tuple: HandlerTuple(ndivide=None, pad=0.3)})
-    for k in range(n_panels, nrows * ncols):
-        axs[k // ncols, k % ncols].axis("off")
     head = figure_title(ds, varying, (len(x), len(y)), n_panels)
     note = ("markers: each attractor's points at $t = t_0 + nT$, in its basin's colour; "
             "legend: basin, attractor, share of the plane")
     if n_panels == 1:
         title = panel_title(ds, (0,) * len(grid_shape), varying)
         head = head.replace("\n", (", " + title if title else "") + "\n", 1)
-        axs[0, 0].set_title(wrap_tex(f"{head}\n{note}", 75), fontsize=8)
+        panels[0].set_title(wrap_tex(f"{head}\n{note}", 75), fontsize=8)
     else:
         fig.suptitle(wrap_tex(f"{head}\n{note}", 100 * ncols), fontsize=9)
-    return fig
-
-
-def plot_basins(ds, out: str | Path, max_panels: int = 36, dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_basins`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_basins(ds, max_panels), out, dpi)
+    return root_figure(fig)

@@ -4,7 +4,7 @@ penetration."""
 import numpy as np
 import xarray as xr
 
-from softimpact_cli.plot.trajectory import draw_trajectory
+from softimpact_cli.plot.trajectory_figure import draw_trajectory
 
 
 def trajectory(max_penetration: float, impacting: int) -> xr.Dataset:

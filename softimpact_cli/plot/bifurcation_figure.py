@@ -6,12 +6,10 @@ the colour of the solution destroyed."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from ..analysis.labels import latex_of
-from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, save, start_text
+from . import panel_letter, parameter_text, place_panels, root_figure, start_text
 from .palette import IMPACTING, SPECIAL, colour_of, solution_order
 
 TRANSIENT = SPECIAL["unresolved"]
@@ -38,16 +36,16 @@ def point_styles(ds) -> dict[tuple[int, int], tuple[str, str]]:
     return out
 
 
-def draw_bifurcation(ds):
-    """Two panels (left body, right body) sharing d; returns the matplotlib Figure."""
+def draw_bifurcation(ds, ax=None):
+    """Two panels (left body, right body) sharing d (``ax``: 2 Axes in that order, or a
+    Figure; see ``plot``); returns the matplotlib Figure."""
     from matplotlib.lines import Line2D
 
     d = ds["d"].values
     names = [str(n) for n in ds["branch_name"].values]
     order = solution_order(ds) or names
     styles = point_styles(ds)
-    fig = new_figure(figsize=(9, 8.6))
-    axs = fig.subplots(2, 1, sharex=True)
+    fig, axs = place_panels(ax, (2, 1), [(0, 0), (1, 0)], figsize=(9, 8.6), sharex=True)
     groups: dict[tuple[str, str], list[int]] = {}
     for (i, j), key in styles.items():
         groups.setdefault(key, []).append(i * len(d) + j)
@@ -110,9 +108,4 @@ def draw_bifurcation(ds):
     fig.suptitle(f"{ds.attrs.get('model')} pair followed in $d$ from {d[0]:g} to "
                  f"{d[-1]:g} (step {step:g}), {start_text(ds)}\n"
                  + parameter_text(ds, exclude=("d",)), fontsize=9)
-    return fig
-
-
-def plot_bifurcation(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_bifurcation`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_bifurcation(ds), out, dpi)
+    return root_figure(fig)

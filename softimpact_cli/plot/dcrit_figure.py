@@ -4,12 +4,11 @@ combinations survive (Roman numerals, as in the study), and x1 - x2 traces (fig.
 from __future__ import annotations
 
 from collections import deque
-from pathlib import Path
 
 import numpy as np
 
 from ..analysis.labels import latex_of
-from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, phase_text, pi_ticks, save
+from . import panel_letter, parameter_text, phase_text, pi_ticks, place_panels, root_figure
 from .palette import colour_of, solution_order
 
 
@@ -69,15 +68,12 @@ def jumps(values: np.ndarray, factor: float = 8.0) -> np.ndarray:
     return np.where(step > factor * max(typical, 1e-12) + 0.05 * np.ptp(values))[0]
 
 
-def plot_dcrit(ds, out: str | Path, combination: str | None = None,
-               dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_dcrit`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_dcrit(ds, combination), out, dpi)
-
-
-def draw_dcrit(ds, combination: str | None = None):
+def draw_dcrit(ds, combination: str | None = None, ax=None):
     """d_crit(phi) with the surviving-count regions, beside x1 - x2 over one period at
-    the trace phases (only ``combination``'s when given); returns the Figure."""
+    the trace phases (only ``combination``'s when given); returns the Figure.
+
+    ``ax``: 1 + one per trace phase Axes (the curves first), or a Figure (see ``plot``).
+    """
     names = [str(n) for n in ds["combination_label"].values]
     order = solution_order(ds) or names
     phi = ds["phi"].values
@@ -85,10 +81,12 @@ def draw_dcrit(ds, combination: str | None = None):
     n_traces = ds.sizes.get("trace_phi", 0)
     ncols = 1 + min(n_traces, 3)
     nrows = 1 + (max(n_traces - 3, 0) + 2) // 3 if n_traces > 3 else 1
-    fig = new_figure(figsize=(5.5 + 3.6 * (ncols - 1), 4.6 * nrows))
-    axs = fig.subplots(nrows, ncols, squeeze=False,
-                       gridspec_kw={"width_ratios": [1.6] + [1] * (ncols - 1)})
-    ax = axs[0, 0]
+    cells = [(0, 0)] + [(0, 1 + k) if k < 3 else (1 + (k - 3) // 3, (k - 3) % 3)
+                        for k in range(n_traces)]
+    fig, axs = place_panels(ax, (nrows, ncols), cells,
+                            figsize=(5.5 + 3.6 * (ncols - 1), 4.6 * nrows),
+                            gridspec_kw={"width_ratios": [1.6] + [1] * (ncols - 1)})
+    ax = axs[0]
     d_lo = max(0.0, 0.9 * float(np.nanmin(dc)))
     d_hi = 1.1 * float(np.nanmax(dc))
     d_axis = np.linspace(d_lo, d_hi, 240)
@@ -117,8 +115,7 @@ def draw_dcrit(ds, combination: str | None = None):
     chosen = [combination] if combination else names
     spp = int(ds.attrs.get("trace_samples_per_period", 512))
     for k in range(n_traces):
-        r, c = (0, 1 + k) if k < 3 else (1 + (k - 3) // 3, (k - 3) % 3)
-        tax = axs[r, c]
+        tax = axs[1 + k]
         tphi = float(ds["trace_phi"].values[k])
         for name in chosen:
             i = names.index(name)
@@ -135,15 +132,14 @@ def draw_dcrit(ds, combination: str | None = None):
         tax.set_title(f"$x_1 - x_2$ at $\\varphi = {phase_text(tphi)}$", fontsize=9)
         if len(chosen) == 1:
             tax.legend(fontsize=7, loc="lower right")
-    for r in range(nrows):
-        for c in range(ncols):
-            if not axs[r, c].has_data():
-                axs[r, c].axis("off")
-    shown = [a for a in axs.ravel() if a.has_data()]
+    for a in axs:
+        if not a.has_data():
+            a.axis("off")
+    shown = [a for a in axs if a.has_data()]
     if len(shown) > 1:
         for k, a in enumerate(shown):
             panel_letter(a, k)
     # d_crit depends on the uncoupled orbits only: not on d, phi (the axis), k_c, c_c, t0
     fig.suptitle(f"{ds.attrs.get('model')} pair (uncoupled orbits): "
                  + parameter_text(ds, exclude=("d", "phi", "k_c", "c_c")), fontsize=9)
-    return fig
+    return root_figure(fig)

@@ -3,13 +3,11 @@ they disagree."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from ..report.info import GRID_AXES
-from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, pi_ticks, save, start_text
-from .basins import SYMBOLS
+from . import panel_letter, parameter_text, pi_ticks, place_panels, root_figure, start_text
+from .basins_figure import SYMBOLS
 
 # what a panel means when it is zero everywhere (drawn as words, not a blank square)
 ALL_ZERO = ("no coexisting non-impacting solution in this range",
@@ -22,8 +20,9 @@ def _say_empty(ax, text: str) -> None:
             wrap=True, bbox={"boxstyle": "round", "fc": "w", "ec": "0.5"})
 
 
-def draw_map(ds):
-    """Three panels over the two swept axes; returns the matplotlib Figure."""
+def draw_map(ds, ax=None):
+    """Three panels over the two swept axes: predicted, found, their difference (``ax``:
+    3 Axes in that order, or a Figure; see ``plot``); returns the matplotlib Figure."""
     import matplotlib
 
     swept = [a for a in GRID_AXES if ds.sizes.get(a, 1) > 1]
@@ -39,8 +38,7 @@ def draw_map(ds):
     hy = (y[-1] - y[0]) / max(1, len(y) - 1) / 2
     extent = (x[0] - hx, x[-1] + hx, y[0] - hy, y[-1] + hy)  # cells centred on the grid
     top = int(max(pred.max(), found.max(), 1))
-    fig = new_figure(figsize=(15, 5.0))
-    axs = fig.subplots(1, 3)
+    fig, axs = place_panels(ax, (1, 3), [(0, 0), (0, 1), (0, 2)], figsize=(15, 5.0))
     cmap = matplotlib.colormaps["viridis"].resampled(top + 1)
     panels = ((pred, "predicted (non-impacting, $d_{crit} < d$)"),
               (found, "found (all periodic attractors)"))
@@ -72,9 +70,4 @@ def draw_map(ds):
     fig.suptitle(f"{ds.attrs.get('model')} pair on a {len(x)} x {len(y)} grid, {n} {kind}"
                  f"initial conditions per point, {start_text(ds)}\n"
                  + parameter_text(ds, exclude=swept), fontsize=9)
-    return fig
-
-
-def plot_map(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_map`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_map(ds), out, dpi)
+    return root_figure(fig)

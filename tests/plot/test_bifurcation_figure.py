@@ -5,7 +5,7 @@ import xarray as xr
 from matplotlib.colors import to_hex
 
 from softimpact_cli.kernels.codes import IMPACTING_BASE, UNRESOLVED_LABEL
-from softimpact_cli.plot.bifurcation import draw_bifurcation
+from softimpact_cli.plot.bifurcation_figure import draw_bifurcation
 from softimpact_cli.plot.palette import IMPACTING, colour_of
 
 NAMES = ["L1^1 R1-0^1", "L1^1 R1-0^2"]

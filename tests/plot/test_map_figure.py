@@ -3,7 +3,7 @@
 import numpy as np
 import xarray as xr
 
-from softimpact_cli.plot.maps import ALL_ZERO, draw_map
+from softimpact_cli.plot.map_figure import ALL_ZERO, draw_map
 
 
 def count_map(predicted: int = 0) -> xr.Dataset:

@@ -2,27 +2,21 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
-from . import DEFAULT_DPI, new_figure, panel_letter, parameter_text, save, start_text
+from . import panel_letter, parameter_text, place_panels, root_figure, start_text
 
 BODY_COLOURS = ("#1f77b4", "#d62728")
 
 
-def plot_trajectory(ds, out: str | Path, last_periods: int | None = None,
-                    dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_trajectory`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_trajectory(ds, last_periods), out, dpi)
-
-
-def draw_trajectory(ds, last_periods: int | None = None):
+def draw_trajectory(ds, last_periods: int | None = None, ax=None):
     """The matplotlib Figure of a trajectory result.
 
     Panels: displacements against t/T with the section points; one phase portrait per
     body (transient faint, last ``last_periods`` periods strong, section points as dots);
-    for a pair, the contact function x1 - x2 - d against t/T.
+    for a pair, the contact function x1 - x2 - d against t/T, the configuration plane
+    and a text summary. ``ax``: 2 Axes (one body) or 6 (a pair) in that order, or a
+    Figure (see ``plot``).
     """
     names = [str(v) for v in ds["variable"].values]
     T = float(ds.attrs["forcing_period"])
@@ -39,9 +33,10 @@ def draw_trajectory(ds, last_periods: int | None = None):
     steady = t >= t_cut
 
     ncols = 3 if pair else 2
-    fig = new_figure(figsize=(4.2 * ncols, 7.2 if pair else 3.8))
-    axes = fig.subplots(2 if pair else 1, ncols, squeeze=False)
-    ax = axes[0, 0]
+    shape = (2 if pair else 1, ncols)
+    fig, axes = place_panels(ax, shape, [divmod(k, ncols) for k in range(shape[0] * ncols)],
+                             figsize=(4.2 * ncols, 7.2 if pair else 3.8))
+    ax = axes[0]
     for k, (ix, _, xl, _) in enumerate(bodies):
         ax.plot(t, y[:, ix], lw=0.7, color=BODY_COLOURS[k], label=f"${xl}$")
         ax.plot(st, sy[:, ix], ".", ms=3, color="k")
@@ -50,7 +45,7 @@ def draw_trajectory(ds, last_periods: int | None = None):
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title("time series (dots: $t = t_0 + nT$)", fontsize=9)
     for k, (ix, iv, xl, vl) in enumerate(bodies):
-        ax = axes[0, 1 + k]
+        ax = axes[1 + k]
         ax.plot(y[~steady, ix], y[~steady, iv], lw=0.4, color="0.75")
         ax.plot(y[steady, ix], y[steady, iv], lw=1.0, color=BODY_COLOURS[k])
         tail = st >= t_cut
@@ -62,7 +57,7 @@ def draw_trajectory(ds, last_periods: int | None = None):
         ax.legend(loc="upper right", fontsize=7)
     if pair:
         d = _parameter(ds, "d")
-        ax = axes[1, 0]
+        ax = axes[ncols]
         ax.plot(t, y[:, 0] - y[:, 2], lw=0.7, color="k")
         if d is not None:
             ax.axhline(d, color="tab:orange", lw=1, ls="--", label=f"$d = {d:g}$")
@@ -72,19 +67,19 @@ def draw_trajectory(ds, last_periods: int | None = None):
         ax.set_xlabel("$t/T$")
         ax.set_ylabel("$x_1 - x_2$")
         ax.set_title("relative displacement", fontsize=9)
-        ax = axes[1, 1]
+        ax = axes[ncols + 1]
         ax.plot(y[:, 0], y[:, 2], lw=0.4, color="0.6")
         ax.plot(sy[:, 0], sy[:, 2], ".", ms=3, color="k")
         ax.set_xlabel("$x_1$")
         ax.set_ylabel("$x_2$")
         ax.set_title("configuration plane", fontsize=9)
-        axes[1, 2].axis("off")
-        axes[1, 2].text(0.0, 1.0, _summary(ds), va="top", family="monospace", fontsize=8,
-                        transform=axes[1, 2].transAxes)
-    for k, ax in enumerate(a for a in axes.ravel() if a.axison):
+        axes[ncols + 2].axis("off")
+        axes[ncols + 2].text(0.0, 1.0, _summary(ds), va="top", family="monospace",
+                             fontsize=8, transform=axes[ncols + 2].transAxes)
+    for k, ax in enumerate(a for a in axes if a.axison):
         panel_letter(ax, k)
     fig.suptitle(_title(ds), fontsize=10)
-    return fig
+    return root_figure(fig)
 
 
 def _parameter(ds, name: str) -> float | None:

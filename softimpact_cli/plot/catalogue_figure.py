@@ -3,39 +3,49 @@
 from __future__ import annotations
 
 from math import ceil
-from pathlib import Path
 
 import numpy as np
 
 from ..analysis.labels import latex_of
 from . import (
-    DEFAULT_DPI,
+    is_figure,
     new_figure,
     panel_letter,
     parameter_text,
     phase_text,
-    save,
+    place_panels,
+    root_figure,
     start_text,
 )
 from .palette import colour_of
 
 
-def plot_catalogue(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_catalogue`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_catalogue(ds), out, dpi)
+def _catalogue_panels(ax, n_combos: int):
+    """(container, attractor panel, combination panels): the attractors in a column
+    spanning the figure's height beside three columns of combinations, or ``ax``."""
+    if ax is not None and not is_figure(ax):
+        fig, panels = place_panels(ax, (1, 1 + n_combos),
+                                   [(0, k) for k in range(1 + n_combos)], None)
+        return fig, panels[0], panels[1:]
+    ncols = 4 if n_combos else 1
+    nrows_c = ceil(n_combos / (ncols - 1)) if n_combos else 0
+    nrows = max(1, nrows_c, 2 if n_combos else 1)
+    fig = new_figure(figsize=(4.0 * ncols, 2.6 * nrows + 0.6)) if ax is None else ax
+    grid = fig.add_gridspec(nrows, ncols)
+    first = fig.add_subplot(grid[:, 0] if n_combos else grid[0, 0])
+    return fig, first, [fig.add_subplot(grid[n // (ncols - 1), 1 + n % (ncols - 1)])
+                        for n in range(n_combos)]
 
 
-def draw_catalogue(ds):
+def draw_catalogue(ds, ax=None):
     """Left: attractors on (x, x') with section points. Right: one panel per combination,
-    x1(t) and x2(t) over the joint period, section times marked. Returns the Figure."""
+    x1(t) and x2(t) over the joint period, section times marked. Returns the Figure.
+
+    ``ax``: an Axes (a one-body catalogue), 1 + one per combination Axes (attractors
+    first), or a Figure (see ``plot``)."""
     names = [str(n) for n in ds["attractor_name"].values]
     combos = [str(n) for n in ds["combination_name"].values] if "combination_name" in ds else []
-    ncols = 4 if combos else 1
-    nrows_c = ceil(len(combos) / (ncols - 1)) if combos else 0
-    nrows = max(1, nrows_c, 2 if combos else 1)
-    fig = new_figure(figsize=(4.0 * ncols, 2.6 * nrows + 0.6))
-    grid = fig.add_gridspec(nrows, ncols)
-    ax = fig.add_subplot(grid[:, 0] if combos else grid[0, 0])
+    fig, ax, combo_axes = _catalogue_panels(ax, len(combos))
     spp = int(ds.attrs["curve_samples_per_period"])
     for i, name in enumerate(names):
         p = int(ds["attractor_period"].values[i])
@@ -60,8 +70,7 @@ def draw_catalogue(ds):
     ax.legend(fontsize=8, loc="best")
     T = float(ds.attrs["forcing_period"])
     for n, cname in enumerate(combos):
-        r, c = divmod(n, ncols - 1)
-        cax = fig.add_subplot(grid[r, 1 + c])
+        cax = combo_axes[n]
         i_l = list(ds["attractor"].values).index(int(ds["combination_left"].values[n]))
         i_r = list(ds["attractor"].values).index(int(ds["combination_right"].values[n]))
         s = int(ds["combination_shift"].values[n])
@@ -86,7 +95,7 @@ def draw_catalogue(ds):
         if n == 0:
             cax.legend(fontsize=7, loc="upper right")
     if combos:
-        for k, a in enumerate(fig.axes):
+        for k, a in enumerate([ax, *combo_axes]):
             panel_letter(a, k, fontsize=10)
     phi = ds.attrs.get("phi")
     params = parameter_text(ds, exclude=("d", "phi", "k_c", "c_c"))
@@ -94,4 +103,4 @@ def draw_catalogue(ds):
                  + (f", right body's forcing phase $\\varphi = {phase_text(float(phi))}$"
                     if phi is not None and combos else "")
                  + f"; {start_text(ds)}, $T = 2\\pi/\\omega = {T:.4g}$", fontsize=10)
-    return fig
+    return root_figure(fig)

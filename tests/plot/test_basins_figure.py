@@ -3,7 +3,7 @@
 import numpy as np
 import xarray as xr
 
-from softimpact_cli.plot.basins import draw_basins
+from softimpact_cli.plot.basins_figure import draw_basins
 
 NAMES = ["L1^1 R1-0^1", "L1^2 R1-0^1"]
 LATEX = [r"$L^{1}_{1}R^{1}_{1-0}$", r"$L^{2}_{1}R^{1}_{1-0}$"]

@@ -5,23 +5,20 @@ parameter at a time is perturbed."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from ..analysis.labels import latex_of
 from ..report.info import design_summary
 from . import (
-    DEFAULT_DPI,
-    new_figure,
     panel_letter,
     parameter_text,
     phase_text,
     pi_ticks,
-    save,
+    place_panels,
+    root_figure,
     start_text,
 )
-from .dcrit import jumps
+from .dcrit_figure import jumps
 from .palette import IMPACTING, colour_of, solution_order
 
 TWO_PI = 2 * np.pi
@@ -188,16 +185,13 @@ def _robustness(ax, s: dict, relative: float) -> None:
     ax.legend(fontsize=7, loc="best")
 
 
-def plot_design(ds, out: str | Path, dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_design`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_design(ds), out, dpi)
-
-
-def draw_design(ds):
-    """The four panels of a design result; returns the matplotlib Figure."""
+def draw_design(ds, ax=None):
+    """The four panels of a design result: the (d, phi) plane, a zoom around the pick,
+    the basin stability at the pick, the perturbations (``ax``: 4 Axes in that order, or
+    a Figure; see ``plot``); returns the matplotlib Figure."""
     s = design_summary(ds)
-    fig = new_figure(figsize=(20.0, 5.8))
-    axs = fig.subplots(1, 4, gridspec_kw={"width_ratios": [1.5, 0.9, 1.0, 1.0]})
+    fig, axs = place_panels(ax, (1, 4), [(0, k) for k in range(4)], figsize=(20.0, 5.8),
+                            gridspec_kw={"width_ratios": [1.5, 0.9, 1.0, 1.0]})
     _plane(axs[0], ds, s)
     _plane(axs[1], ds, s, _zoom_view(ds, s["best"]))
     _bars(axs[2], s)
@@ -210,4 +204,4 @@ def draw_design(ds):
         f"{b['d']:.4g}, $\\varphi = {phase_text(b['phi'])}$, $k_c$ = {b['k_c']:.4g}, $c_c$ = "
         f"{b['c_c']:.4g}; samples in {ds.attrs.get('sample_box', '?')}, {start_text(ds)}\n"
         f"{parameter_text(ds, exclude=('d', 'phi', 'k_c', 'c_c', 'law'))}", fontsize=9)
-    return fig
+    return root_figure(fig)

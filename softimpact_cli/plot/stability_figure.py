@@ -3,25 +3,18 @@ impacting solutions, one for the non-impacting sum, with 95% Wilson bands."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from ..analysis.labels import latex_of, parse_label
 from ..report.info import grid_dims
-from . import DEFAULT_DPI, new_figure, parameter_text, pi_ticks, save, start_text
-from .basins import SYMBOLS
+from . import parameter_text, pi_ticks, place_panels, root_figure, start_text
+from .basins_figure import SYMBOLS
 from .palette import IMPACTING, colour_of, solution_order
 
 
-def plot_stability(ds, bs, out: str | Path, against: str, dpi: int = DEFAULT_DPI) -> Path:
-    """Draw ``draw_stability`` to ``out`` (PNG/PDF/SVG by suffix)."""
-    return save(draw_stability(ds, bs, against), out, dpi)
-
-
-def draw_stability(ds, bs, against: str):
+def draw_stability(ds, bs, against: str, ax=None):
     """``bs`` is ``analysis.stability.basin_stability(ds)``; ``against`` a grid axis.
-    Returns the matplotlib Figure."""
+    One panel (``ax``: an Axes or a Figure, see ``plot``). Returns the matplotlib Figure."""
     dims = grid_dims(ds)
     x = ds[against].values
     T = float(ds.attrs["forcing_period"])
@@ -33,8 +26,7 @@ def draw_stability(ds, bs, against: str):
     share = bs["share"].squeeze(drop=True)
     lo = bs["ci_low"].squeeze(drop=True)
     hi = bs["ci_high"].squeeze(drop=True)
-    fig = new_figure(figsize=(9.0, 4.8))
-    ax = fig.subplots()
+    fig, (ax,) = place_panels(ax, (1, 1), [(0, 0)], figsize=(9.0, 4.8))
     order = solution_order(ds)
     never = []  # solutions of the catalogue no sample reached, at any grid point
     for g in [str(v) for v in bs["group"].values]:
@@ -72,4 +64,4 @@ def draw_stability(ds, bs, against: str):
                     f"{'s' if len(never) > 1 else ''} that no sample reached"
                     if never else ""), fontsize=9)
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
-    return fig
+    return root_figure(fig)

@@ -1,0 +1,213 @@
+"""The Python API: scenes in, ``xarray.Dataset`` out, figures on your axes.
+
+::
+
+    import softimpact_cli as si
+
+    scene = si.load_scene({"system": {"model": "duffing"}, "analysis": {"kind": "basins"},
+                           "initial_conditions": {"resolution": [20, 20]}})
+    ds = si.run(scene, workers=2)            # every kind; sweeps run in memory
+    fig = si.plot.basins(ds, ax=ax)          # draws on ax, returns its Figure
+    si.sweep(scene, "basins.h5", resume=True)  # the resumable result file of the CLI
+
+The command line is a thin layer over these functions: ``softimpact sweep`` shrinks the
+scene with :func:`shrink_scene`, runs it with :func:`sweep`, and ``softimpact plot`` /
+``info`` open results with :func:`open_result`. Errors a user can cause raise
+:class:`ConfigError` with the CLI's one-line message (the messages name the CLI's flags:
+``--overwrite`` is ``overwrite=True`` here).
+
+Progress is off by default (``progress=False``): a notebook cell stays quiet. Pass
+``progress=True`` for a ``tqdm.auto`` bar (a widget in Jupyter, text elsewhere), or a
+callable ``progress(total, initial) -> update`` as the CLI does; ``echo=print`` prints
+the plan and catalogue lines the CLI shows.
+"""
+
+from __future__ import annotations
+
+import os
+import warnings
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from .config import ConfigError, Scene, check_writable, parse_scene, result_path
+from .config import load_scene as load_scene_file
+
+if TYPE_CHECKING:  # importing the package must not import xarray
+    import xarray as xr
+
+__all__ = ["ConfigError", "load_scene", "open_result", "run", "shrink_scene", "sweep"]
+
+SceneLike = Scene | str | os.PathLike | Mapping[str, Any]
+
+
+def _silent(_: str) -> None:
+    pass
+
+
+def load_scene(scene: SceneLike, source: str | None = None) -> Scene:
+    """A validated Scene from a scene file path, TOML text, or a mapping of sections.
+
+    - a ``Path`` (or a string without a newline and without "=") is a scene file;
+    - other strings are TOML text;
+    - a mapping (``{"system": {"model": "duffing"}, "analysis": {...}}``) is validated
+      exactly as the TOML it mirrors: it is written as that TOML text (stored in the
+      result and hashed for resuming), and the same checks give the same messages;
+    - a Scene is returned as it is.
+
+    ``source`` names a text or mapping scene in messages and result attributes (default
+    "<string>" / "<dict>"; its result file defaults to results/scene.h5). Raises
+    ConfigError with the CLI's one-line message.
+    """
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, Mapping):
+        from .config.toml_text import toml_text
+
+        name = source or "<dict>"
+        return parse_scene(toml_text(scene, name), name)
+    if isinstance(scene, str) and ("\n" in scene or "=" in scene or not scene.strip()):
+        return parse_scene(scene, source or "<string>")
+    if isinstance(scene, str | os.PathLike):
+        return load_scene_file(scene)
+    raise ConfigError(f"load_scene: expected a scene file path, TOML text or a mapping of "
+                      f"sections, got {type(scene).__name__}")
+
+
+def shrink_scene(scene: Scene, quick: bool = False, resolution: int | None = None) -> Scene:
+    """The scene at the CLI's ``--quick`` (planes <= 24 x 24, <= 100 samples, <= 6 values
+    per swept grid axis, fewer dcrit phases and d steps) and/or ``--resolution N`` (a
+    plane's resolution per axis capped at N, grids kept); the stored scene text says so."""
+    from .config import quick as quick_scene
+
+    if quick:
+        scene = quick_scene(scene)
+    if resolution:
+        if isinstance(resolution, bool) or not isinstance(resolution, int) or resolution < 1:
+            raise ConfigError(f"resolution: must be a whole number >= 1, got {resolution!r}")
+        scene = quick_scene(scene, plane=resolution, samples=10**12,
+                            flag=f"--resolution {resolution}", axis=None)
+    return scene
+
+
+def _progress(progress: bool | Callable | None, unit: str) -> Callable | None:
+    """A progress factory ``(total, initial=0) -> update``: None (off), the caller's own,
+    or a ``tqdm.auto`` bar that closes itself when full (and stays: how long it took)."""
+    if not progress:
+        return None
+    if callable(progress):
+        return progress
+
+    def start(total: int, initial: int = 0):
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=total, initial=initial, unit=unit, smoothing=0.1)
+
+        def update(work) -> None:
+            bar.update(len(work) if hasattr(work, "__len__") else work)
+            if bar.n >= total:
+                bar.close()
+
+        return update
+
+    return start
+
+
+def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
+        workers: int | None = None, scheduler: str | None = None,
+        chunk_size: int | None = None, progress: bool | Callable = False,
+        echo: Callable[[str], None] | None = None) -> xr.Dataset:
+    """Run any scene and return its ``xarray.Dataset``; no file is read or written.
+
+    ``scene``: a Scene or anything :func:`load_scene` takes. ``quick`` and
+    ``resolution``: the CLI's ``--quick`` and ``--resolution N``. ``workers``: local
+    processes (default all cores; 1 runs in this process) or ``scheduler`` a Dask
+    address (``tcp://HOST:PORT``, ``local:N``), for the kinds that use them (sweeps,
+    dcrit, bifurcation, design). Sweep kinds (basins, stability, map) run their chunks in
+    memory (``chunk_size`` trajectories each; not resumable: use :func:`sweep` for
+    that) and return the dataset their result file would hold. ``progress``: False
+    (default), True for a ``tqdm.auto`` bar, or a factory as in the module docstring.
+    """
+    from .kinds import get as kind_of
+
+    sc = shrink_scene(load_scene(scene), quick, resolution)
+    kind = kind_of(sc.analysis.kind)
+    bar = _progress(progress, kind.progress_unit)
+    if kind.sweep:
+        from .sweep import sweep_in_memory
+
+        return sweep_in_memory(sc, workers, scheduler, chunk_size, echo or _silent, bar)
+    from .kinds.run import run_scene
+
+    return run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
+                     echo=echo or _silent)
+
+
+def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: bool = False,
+          overwrite: bool = False, workers: int | None = None, scheduler: str | None = None,
+          chunk_size: int | None = None, quick: bool = False, resolution: int | None = None,
+          progress: bool | Callable = False, echo: Callable[[str], None] | None = None
+          ) -> xr.Dataset:
+    """Run a scene into its result file ``out`` (default: its [output] path), as
+    ``softimpact sweep`` does, and return the complete dataset.
+
+    Sweep kinds write chunk by chunk: an interrupted run (a killed kernel, Ctrl-C) keeps
+    its finished chunks, and ``resume=True`` finishes it (same scene required; with
+    nothing to resume it starts afresh). Other kinds run whole and write at the end
+    (``resume`` is refused). An existing result needs ``overwrite=True``. The other
+    options are those of :func:`run`.
+    """
+    from .kinds import SWEEP_KINDS
+    from .kinds import get as kind_of
+
+    sc = shrink_scene(load_scene(scene), quick, resolution)
+    target = result_path(sc, None if out is None else str(out))
+    check_writable(target, str(sc.source) if out is None else "sweep", "[output] path"
+                   if out is None else "out")
+    kind = kind_of(sc.analysis.kind)
+    bar = _progress(progress, kind.progress_unit)
+    echo = echo or _silent
+    if kind.sweep:
+        from .sweep import run_sweep
+
+        return run_sweep(sc, target, workers=workers, scheduler=scheduler, resume=resume,
+                         overwrite=overwrite, chunk_size=chunk_size, echo=echo, progress=bar)
+    if resume:
+        raise ConfigError(f"{sc.source}: resume is for sweeps (kinds "
+                          f"{', '.join(SWEEP_KINDS)}); a {kind.name} reruns whole")
+    from .kinds.run import run_scene
+    from .store import write_result
+    from .store.lock import output_lock
+    from .store.provenance import command_line
+
+    # held for the whole run: a second run on the same output is refused at once, not
+    # after it has computed everything
+    with output_lock(target, command_line()):
+        if target.exists() and not overwrite:
+            raise ConfigError(f"{target}: result exists; pass --overwrite to replace it")
+        ds = run_scene(sc, progress=bar, workers=workers, scheduler=scheduler, echo=echo)
+        write_result(ds, target)
+    return ds
+
+
+def open_result(path: str | os.PathLike) -> xr.Dataset:
+    """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed).
+    ConfigError when it is missing, a directory, or not a softimpact result."""
+    from .store import open_result as read
+
+    p = Path(path)
+    if p.is_dir():
+        raise ConfigError(f"{path}: is a directory, not a result file")
+    if not p.is_file():
+        raise ConfigError(f"{path}: no such result file")
+    try:
+        with warnings.catch_warnings():  # a foreign HDF5 file: the reader's warnings are noise
+            warnings.simplefilter("ignore")
+            ds = read(p)
+    except Exception as exc:  # any reader failure is the file's fault, said in one line
+        raise ConfigError(f"{path}: not a softimpact result file ({exc.__class__.__name__})"
+                          ) from None
+    if "analysis" not in ds.attrs or "scene_text" not in ds.attrs:
+        raise ConfigError(f"{path}: not a softimpact result file (an HDF5 file without the "
+                          "'analysis' and 'scene_text' attributes softimpact writes)")
+    return ds

@@ -1,0 +1,64 @@
+"""Run a sweep scene in memory: the dataset its result file would hold, no file written.
+
+The same plan, catalogue, worker context, chunks and assembly as ``runner.run_sweep``
+(shared functions), so labels, periods and statuses are those of the file; what it
+skips is the store (no header, no chunk files, no lock), and with it resuming. For
+notebooks (``softimpact_cli.kinds.run``); long runs that should survive an interruption go
+through ``run_sweep`` (``softimpact_cli.sweep`` in the API, ``softimpact sweep``).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import numpy as np
+import xarray as xr
+
+from ..config import Scene
+from ..store.provenance import history_line, provenance
+from .chunks import RESULT_FIELDS
+from .executors import make_executor
+from .plan import Plan, default_chunk_size
+from .runner import keep_first_orbits, labelled_dataset, prepare_inputs
+
+
+def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | None = None,
+                    chunk_size: int | None = None,
+                    echo: Callable[[str], None] = lambda s: None,
+                    progress: Callable[[int, int], Callable[[np.ndarray], None]] | None = None
+                    ) -> xr.Dataset:
+    """Run a sweep scene (basins, stability, map) and return its complete dataset.
+
+    ``workers`` local processes (default: all cores; 1 runs here) or a Dask
+    ``scheduler``; ``progress(total, initial)`` may return a callable fed with each
+    chunk's label codes. The attributes are those a result file carries (``n``,
+    ``plan``, ``executor``, provenance; ``resumed`` 0, one session).
+    """
+    started = time.time()
+    t0 = time.perf_counter()
+    executor = make_executor(workers, scheduler)
+    n_total = scene.grid.size * scene.initial_conditions.count
+    size = chunk_size or default_chunk_size(n_total, getattr(executor, "workers", 8))
+    plan = Plan(scene, size)
+    plan.check_memory(str(scene.source))
+    echo(plan.describe())
+    echo(f"executor: {executor.describe()}")
+    inputs = prepare_inputs(scene, echo)
+    arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
+    orbits: dict = {}
+    tick = progress(plan.n_total, 0) if progress else None
+    todo = [(i, *plan.chunk(i)) for i in range(plan.n_chunks)]
+    for index, result in executor.run(inputs.context, todo):
+        start, stop = plan.chunk(index)
+        for key in RESULT_FIELDS:
+            arrays[key][start:stop] = result[key]
+        keep_first_orbits(orbits, result["orbits"])
+        if tick:
+            tick(result["label"])
+    ds = labelled_dataset(scene, inputs, arrays, orbits)
+    ds.attrs.update(provenance(scene, started, time.time(), time.perf_counter() - t0))
+    ds.attrs.update({"n": plan.n_total, "n_chunks": plan.n_chunks, "chunk_size": plan.chunk_size,
+                     "plan": plan.describe(), "executor": executor.describe(), "resumed": 0,
+                     "sessions": 1, "history": history_line(started), "complete": 1})
+    return ds
