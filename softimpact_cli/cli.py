@@ -628,10 +628,13 @@ def info(result, as_json, compare):
 @click.option("--cached-only", is_flag=True,
               help="Compute nothing: use the runs cached in results/reproduce/ and mark the "
                    "statements whose runs are missing as not checked yet.")
+@click.option("--cache", type=click.Path(file_okay=False), default=None,
+              help="Folder of the cached runs (default: results/reproduce/ of the "
+                   "repository).")
 @click.option("-q", "--quiet", is_flag=True, help="No progress lines.")
 @_interruptible
 @_user_errors
-def reproduce(quick, only, output, workers, cached_only, quiet):
+def reproduce(quick, only, output, workers, cached_only, cache, quiet):
     """Check the study's statements one by one and write a table (results/reproduce.md):
     the study's value, softimpact's with its interval, the runs, and a verdict.
 
@@ -639,12 +642,14 @@ def reproduce(quick, only, output, workers, cached_only, quiet):
     run is reused and an interrupted sweep resumes.
     """
     from .reproduce.report import reproduce as run_reproduce
+    from .reproduce.runs import CACHE
     from .reproduce.table import summary
 
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     try:
         rows, text = run_reproduce(quick=quick, only=only, workers=workers,
-                                   cached_only=cached_only, echo=echo)
+                                   cached_only=cached_only,
+                                   cache=Path(cache) if cache else CACHE, echo=echo)
     except ValueError as exc:
         raise ConfigError(str(exc)) from None
     out = Path(output)

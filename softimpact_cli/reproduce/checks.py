@@ -72,7 +72,7 @@ def bilinear_parameters(st, runs):
 def rk4_available(st, runs):
     from ..config import parse_scene
 
-    scene = parse_scene('[system]\nmodel = "duffing"\n[analysis]\nkind = "trajectory"\n'
+    scene = parse_scene('[system]\nmodel = "duffing"\n[analysis]\nkind = "dcrit"\n'
                         '[integrator]\nmethod = "rk4"\nsteps_per_period = 1440\n'
                         'locate_switches = false\n')
     i = scene.integrator
