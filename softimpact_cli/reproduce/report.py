@@ -75,9 +75,10 @@ def _header(quick: bool, only: str | None, used: list[str], cache: Path) -> str:
 
     now = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     size = (f"**QUICK run (reduced sizes): basin planes at most {QUICK_PLANE} x "
-            f"{QUICK_PLANE}, at most {QUICK_SAMPLES} random samples per point, the kinds' "
-            "--quick reductions (fewer phases, coarser d steps, fewer grid values); the "
-            "numbers are not the study's resolution.**" if quick else
+            f"{QUICK_PLANE}, at most {QUICK_SAMPLES} random samples per point (grids, "
+            "catalogues, critical distances and bifurcation diagrams stay at full size); "
+            "shares are not at the study's resolution.**"
+            if quick else
             "Full resolution: every scene of configs/figures/ as stated there (pair basins "
             "200 x 200 per panel, one body 300 x 300, N = 1000 per basin-stability point).")
     return "\n".join([

@@ -78,8 +78,15 @@ class Run:
         return text
 
     def scene(self, quick_run: bool = False) -> Scene:
+        """The scene; ``quick_run`` shrinks the sweeps (basins, stability) only: the
+        catalogues, critical distances and bifurcation diagrams take seconds at full size,
+        and their statements name phases and steps a thinned grid would miss."""
+        from ..kinds import get as kind_of
+
         scene = parse_scene(self.text(), f"{self.name} ({self.scene_file})")
-        return quick(scene, plane=QUICK_PLANE, samples=QUICK_SAMPLES) if quick_run else scene
+        if quick_run and kind_of(scene.analysis.kind).sweep:
+            return quick(scene, plane=QUICK_PLANE, samples=QUICK_SAMPLES, axis=None)
+        return scene
 
     def command(self) -> str:
         """The shell command that makes the same result by hand."""
