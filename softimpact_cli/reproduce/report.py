@@ -31,22 +31,37 @@ def reproduce(quick: bool = False, only: str | None = None, workers: int | None 
     done: dict[str, object] = {}
     used: list[str] = []
 
+    stood: dict[str, str] = {}  # run -> the stand-in used for it (--cached-only)
+    row_stand_ins: set[str] = set()
+
     def runs(name: str):
         if name not in done:
             try:
                 done[name] = execute(RUNS[name], quick, workers, cache, echo, cached_only)
             except MissingRun as missing:
                 done[name] = missing
+                stand_in = RUNS[name].stand_in
+                if stand_in:
+                    try:
+                        done[name] = execute(RUNS[stand_in], quick, workers, cache, echo,
+                                             cached_only)
+                        stood[name] = stand_in
+                    except MissingRun:
+                        pass
         if isinstance(done[name], Exception):
             raise done[name]
-        if name not in used:
-            used.append(name)
+        actual = stood.get(name, name)
+        if actual not in used:
+            used.append(actual)
+        if name in stood:
+            row_stand_ins.add(name)
         return done[name]
 
     rows = []
     for st in statements:
         row = {k: st[k] for k in ("id", "where", "text")}
         row.update(value="", command="", explanation="")
+        row_stand_ins.clear()
         if st["rule"] == "none":
             row["verdict"] = f"{NOT_COMPUTABLE}: {st['why']}"
         else:
@@ -56,7 +71,12 @@ def reproduce(quick: bool = False, only: str | None = None, workers: int | None 
                 row["value"] = _value_text(m)
                 names = list(dict.fromkeys([*m.runs, *(r for a in m.alternatives
                                                        for r in a.runs)]))
-                row["command"] = ", ".join(names)
+                row["command"] = ", ".join(stood.get(n, n) for n in names)
+                if row_stand_ins:
+                    said = ", ".join(f"{stood[n]} for {n}" for n in sorted(row_stand_ins))
+                    row["explanation"] = "; ".join(filter(None, [
+                        f"measured on the lower-resolution stand-in ({said}): the full "
+                        "run is not made yet", row["explanation"]]))
             except MissingRun as missing:
                 row["verdict"] = (f"{NOT_CHECKED}: needs run {missing.name} "
                                   f"({RUNS[missing.name].command()})")

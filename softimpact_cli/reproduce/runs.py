@@ -70,6 +70,8 @@ class Run:
     changes: tuple[tuple[str, str, object], ...] = ()
     note: str = ""
     heavy: bool = field(default=False)
+    stand_in: str = ""  # a cheaper run (lower resolution) a table may use while this one
+    #                     is not made (--cached-only), saying so in the rows
 
     def text(self) -> str:
         text = (CONFIGS / self.scene_file).read_text()
@@ -155,6 +157,7 @@ def execute(run: Run, quick_run: bool = False, workers: int | None = None,
 
 
 T_HALF = (("initial_conditions", "t0", "T/2"),)
+STAND_IN = 50  # plane side of the heavy basin runs' stand-ins
 RK4 = (("integrator", "method", "rk4"), ("integrator", "steps_per_period", 1440),
        ("integrator", "locate_switches", False))
 
@@ -187,22 +190,29 @@ RUN_LIST = (
     Run("fig14d_t0", "figures/fig14c_t0_stability.toml", (("coupling", "c_c", 2.0),),
         "figure 14(d): c_c = 2"),
     Run("fig14c_random_t0", "figures/fig14c_random_t0_stability.toml"),
-    # heavy: full-resolution basins and basin stability
-    Run("fig07_basins", "figures/fig07_duffing_basins.toml", heavy=True),
-    Run("fig07_basins_t0half", "figures/fig07_duffing_basins.toml", T_HALF,
-        "start at t0 = T/2", heavy=True),
-    Run("fig14cd", "figures/fig14cd_duffing_impacting.toml", heavy=True),
-    Run("fig14cd_t0half", "figures/fig14cd_duffing_impacting.toml", T_HALF,
-        "start at t0 = T/2", heavy=True),
+    Run("fig14a_stability", "figures/fig15a_bilinear_stability.toml",
+        (("grid", "k_c", [8.0, 20.0]),), "figure 15(a)'s scene at k_c = 8 and 20 only "
+        "(figure 14(a, b))"),
+    # heavy: full-resolution basins and basin stability, each with a 50 x 50 stand-in
+    *(run for name, scene, changes, note in (
+        ("fig07_basins", "fig07_duffing_basins", (), ""),
+        ("fig07_basins_t0half", "fig07_duffing_basins", T_HALF, "start at t0 = T/2"),
+        ("fig14cd", "fig14cd_duffing_impacting", (), ""),
+        ("fig14cd_t0half", "fig14cd_duffing_impacting", T_HALF, "start at t0 = T/2"),
+        ("fig06", "fig06_duffing_basins", (), ""),
+        ("fig13", "fig13_bilinear_basins", (), ""),
+        ("fig03", "fig03_duffing_single_basins", (), ""),
+        ("fig09", "fig09_bilinear_single_basins", (), ""),
+        ("fig12", "fig12_bilinear_basins", (), ""),
+        ("fig14ab", "fig14ab_bilinear_impacting", (), ""),
+        ("fig14ab_t0half", "fig14ab_bilinear_impacting", T_HALF, "start at t0 = T/2"),
+    ) for run in (
+        Run(name, f"figures/{scene}.toml", changes, note, heavy=True,
+            stand_in=f"{name}_r{STAND_IN}"),
+        Run(f"{name}_r{STAND_IN}", f"figures/{scene}.toml",
+            (*changes, ("initial_conditions", "resolution", [STAND_IN, STAND_IN])),
+            ", ".join(filter(None, [note, f"{STAND_IN} x {STAND_IN} plane"]))))),
     Run("fig15b", "figures/fig15b_duffing_stability.toml", heavy=True),
-    Run("fig06", "figures/fig06_duffing_basins.toml", heavy=True),
-    Run("fig13", "figures/fig13_bilinear_basins.toml", heavy=True),
     Run("fig15a", "figures/fig15a_bilinear_stability.toml", heavy=True),
-    Run("fig03", "figures/fig03_duffing_single_basins.toml", heavy=True),
-    Run("fig09", "figures/fig09_bilinear_single_basins.toml", heavy=True),
-    Run("fig12", "figures/fig12_bilinear_basins.toml", heavy=True),
-    Run("fig14ab", "figures/fig14ab_bilinear_impacting.toml", heavy=True),
-    Run("fig14ab_t0half", "figures/fig14ab_bilinear_impacting.toml", T_HALF,
-        "start at t0 = T/2", heavy=True),
 )
 RUNS = {run.name: run for run in RUN_LIST}
