@@ -8,7 +8,8 @@ study's integrator, a typo read the other way, ...). The verdict is
 - ``differs, explained``: it does not, but an explanation's run does (named in the row);
 - ``differs, unexplained``: neither the value nor any explanation tried agrees;
 - ``not computable``: no run can check the statement (the row says why);
-- ``not checked yet``: the run it needs was not made (the row names it).
+- ``not checked yet``: the run it needs was not made (the row names it), or the value
+  differs and a candidate explanation's run was not made.
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ class Measure:
     label: str = ""
     alternatives: list[Measure] = field(default_factory=list)
     note: str = ""
+    pending: list[str] = field(default_factory=list)  # explanation runs not made yet
 
 
 def agrees(rule: str, study: Any, precision: float, m: Measure) -> bool:
@@ -78,4 +80,7 @@ def verdict(statement: dict, m: Measure) -> tuple[str, str]:
     text = "; ".join(filter(None, [m.note, *tried]))
     if explaining:
         return EXPLAINED, text
+    if m.pending:
+        return (f"{NOT_CHECKED}: differs; the explanation needs run "
+                f"{', '.join(m.pending)}", text)
     return UNEXPLAINED, text or "no explanation tried"

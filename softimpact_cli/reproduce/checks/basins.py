@@ -131,7 +131,7 @@ def _impacting_share(run_name: str, d: float):
             alt.label = "start at t0 = T/2"
             m.alternatives.append(alt)
         except MissingRun as missing:
-            m.note += f"; t0 = T/2 not tried yet (needs run {missing.name})"
+            m.pending.append(missing.name)
         return m
     return fn
 

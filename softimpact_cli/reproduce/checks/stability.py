@@ -83,7 +83,7 @@ def _plane_shares(runs, c_c: float, groups: list[str]) -> Measure:
         m.alternatives.append(_share_measure(_plane(runs, "fig14cd_t0half", c_c=c_c), groups,
                                              "fig14cd_t0half", label="start at t0 = T/2"))
     except MissingRun as missing:
-        m.note += f"; t0 = T/2 not tried yet (needs run {missing.name})"
+        m.pending.append(missing.name)
     return m
 
 
@@ -115,7 +115,7 @@ def fig14a_plane_share(st, runs):
                                              ["non-impacting (sum)"], "fig14ab_t0half",
                                              label="start at t0 = T/2"))
     except MissingRun as missing:
-        m.note = f"t0 = T/2 not tried yet (needs run {missing.name})"
+        m.pending.append(missing.name)
     return m
 
 
