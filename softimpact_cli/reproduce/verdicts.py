@@ -41,6 +41,7 @@ class Measure:
     alternatives: list[Measure] = field(default_factory=list)
     note: str = ""
     pending: list[str] = field(default_factory=list)  # explanation runs not made yet
+    caveat: str = ""  # an explanation that agrees but contradicts another run: not counted
 
 
 def agrees(rule: str, study: Any, precision: float, m: Measure) -> bool:
@@ -73,9 +74,10 @@ def verdict(statement: dict, m: Measure) -> tuple[str, str]:
     explaining = []
     for alt in m.alternatives:
         ok = agrees(rule, study, precision, alt)
-        tried.append(f"{alt.label}: {alt.shown} ({'agrees' if ok else 'does not agree'};"
-                     f" run {', '.join(alt.runs)})")
-        if ok:
+        said = "does not agree" if not ok else (
+            f"agrees, not counted: {alt.caveat}" if alt.caveat else "agrees")
+        tried.append(f"{alt.label}: {alt.shown} ({said}; run {', '.join(alt.runs)})")
+        if ok and not alt.caveat:
             explaining.append(alt)
     text = "; ".join(filter(None, [m.note, *tried]))
     if explaining:

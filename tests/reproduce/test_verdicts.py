@@ -54,3 +54,10 @@ def test_a_difference_with_an_explanation_not_run_yet_is_not_checked_yet():
     v, _ = verdict(st, m)
     assert v.startswith("not checked yet: differs") and "fig07_basins_t0half" in v
     assert verdict(st, Measure(10.0, "10.0", pending=["x"]))[0] == REPRODUCED
+
+
+def test_an_explanation_with_a_caveat_is_reported_but_not_counted():
+    st = {"rule": "count", "study": 3}
+    alt = Measure(3, "3", runs=("r",), label="sign flipped", caveat="contradicts figure 7")
+    v, why = verdict(st, Measure(2, "2", alternatives=[alt]))
+    assert v == UNEXPLAINED and "agrees, not counted: contradicts figure 7" in why

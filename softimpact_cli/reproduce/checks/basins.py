@@ -261,8 +261,11 @@ def fig06c_names(st, runs):
     m = _fig06c_names(st, runs)
     ds = runs("fig05")
     a, b = (M.dcrit_at(ds, n, 5 * PI / 8) for n in ("L1^1 R1-0^2", "L1^2 R1-0^1"))
-    m.note = (f"but at figure 7's phi = 5pi/8 softimpact's sign puts L1^1 R1-0^2's line "
+    caveat = (f"at figure 7's phi = 5pi/8 softimpact's sign puts L1^1 R1-0^2's line "
               f"({a:.2f}) above L1^2 R1-0^1's ({b:.2f}), as the study's figure 7 does "
-              "(S31, S33): a flipped sign would swap them, so no single phase convention "
+              "(S31, S33); a flipped sign would swap them, so no single phase convention "
               "explains both figures")
+    for alt in m.alternatives:
+        if "sign flipped" in alt.label:
+            alt.caveat = caveat
     return m
