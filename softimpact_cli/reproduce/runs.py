@@ -217,6 +217,8 @@ RUN_LIST = (
             (*changes, ("initial_conditions", "resolution", [STAND_IN, STAND_IN])),
             ", ".join(filter(None, [note, f"{STAND_IN} x {STAND_IN} plane"]))))),
     Run("fig15b", "figures/fig15b_duffing_stability.toml", heavy=True),
+    Run("fig15b_t0half", "figures/fig15b_duffing_stability.toml", T_HALF,
+        "start at t0 = T/2", heavy=True),
     Run("fig15a", "figures/fig15a_bilinear_stability.toml", heavy=True),
 )
 RUNS = {run.name: run for run in RUN_LIST}

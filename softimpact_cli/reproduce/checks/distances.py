@@ -320,3 +320,14 @@ def fig07_below_red_line(st, runs):
                    "basin planes of figure 7", ("fig07", "fig07_basins"))
 
 
+
+
+@check("fig13_each_eliminable")
+def fig13_each_eliminable(st, runs):
+    ds = runs("fig13_dcrit")
+    tops = {n: float(M.dcrit_curve(ds, n)[1].max()) for n in M.combination_names(ds)}
+    lowest = min(tops, key=tops.get)
+    return Measure(len(tops) > 0 and tops[lowest] > 0.0,
+                   f"every one of the {len(tops)} states has d_crit > 0 at some phi (so a d "
+                   f"below it destroys it); the smallest maximum is {tops[lowest]:.3f} "
+                   f"({lowest})", ("fig13_dcrit",))
