@@ -32,6 +32,9 @@ def _count(run: str, with_dcrit: tuple | None = None, **where):
         p = _plane(runs, run, **where)
         sol, imp = M.found(p)
         m = Measure(len(sol) + len(imp), _found_text(p), (run,))
+        if imp:
+            m.alternatives.append(Measure(len(sol), f"{len(sol)}", (run,),
+                                          label="counting the non-impacting solutions only"))
         if with_dcrit:
             m.alternatives += _predicted(runs, *with_dcrit, count=True)
         return m
