@@ -216,6 +216,11 @@ RUN_LIST = (
         Run(f"{name}_r{STAND_IN}", f"figures/{scene}.toml",
             (*changes, ("initial_conditions", "resolution", [STAND_IN, STAND_IN])),
             ", ".join(filter(None, [note, f"{STAND_IN} x {STAND_IN} plane"]))))),
+    Run("fig03_wide_r50", "figures/fig03_duffing_single_basins.toml",
+        (("initial_conditions", "ranges", [[-12.0, 12.0], [-40.0, 40.0]]),
+         ("initial_conditions", "resolution", [STAND_IN, STAND_IN])),
+        f"velocities in [-40, 40] (the study's window is not stated), {STAND_IN} x "
+        f"{STAND_IN} plane"),
     Run("fig15b", "figures/fig15b_duffing_stability.toml", heavy=True),
     Run("fig15b_t0half", "figures/fig15b_duffing_stability.toml", T_HALF,
         "start at t0 = T/2", heavy=True),
