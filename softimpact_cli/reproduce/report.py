@@ -86,11 +86,16 @@ def reproduce(quick: bool = False, only: str | None = None, workers: int | None 
                                   f"({exc.__class__.__name__}: {exc})")
         rows.append(row)
         echo(f"{row['id']}: {row['verdict']}")
-    return rows, write_table(rows, _header(quick, only, used, cache)) + _runs_section(
-        used, quick, cache)
+    header = _header(quick, only, cached_only)
+    if stood:
+        header += ("\n\n**Stand-ins:** the full runs " + ", ".join(sorted(stood)) + " were not "
+                   "made when this table was written (`--cached-only`); their rows are "
+                   "measured on the 50 x 50 stand-ins " + ", ".join(sorted(stood.values()))
+                   + " and say so.")
+    return rows, write_table(rows, header) + _runs_section(used, quick, cache)
 
 
-def _header(quick: bool, only: str | None, used: list[str], cache: Path) -> str:
+def _header(quick: bool, only: str | None, cached_only: bool) -> str:
     from .. import __version__
 
     now = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
@@ -105,7 +110,8 @@ def _header(quick: bool, only: str | None, used: list[str], cache: Path) -> str:
         "# Reproducing the study, statement by statement",
         "",
         f"Made by `softimpact reproduce{' --quick' if quick else ''}"
-        f"{f' --only {only}' if only else ''}` (softimpact {__version__}, {now}). "
+        f"{' --cached-only' if cached_only else ''}{f' --only {only}' if only else ''}` "
+        f"(softimpact {__version__}, {now}). "
         "Every softimpact number below was produced by the runs named in its row (listed "
         "at the end with the command that remakes each); the study's values are its own.",
         "",
