@@ -219,7 +219,9 @@ def fig15a_full_above(st, runs):
     full = [c[0] for c in curve if c[1] == 1.0]
     ok = bool(above) and all(c[1] == 1.0 for c in above)
     return Measure(ok, "100% at k_c = " + (", ".join(f"{k:g}" for k in full) or "none")
-                   + f" (grid step {curve[1][0] - curve[0][0]:g})", ("fig15a",))
+                   + f" (grid step {curve[1][0] - curve[0][0]:g}); above {st['study']:g}: "
+                   + ", ".join(f"k_c = {c[0]:g}: {_pct(c[1])} [{_pct(c[2][0])}, "
+                               f"{_pct(c[2][1])}]" for c in above), ("fig15a",))
 
 
 @check("fig15a_fluctuations")
