@@ -586,5 +586,49 @@ def info(result, as_json, compare):
     click.echo(format_summary(summary, ds))
 
 
+@main.command("reproduce")
+@click.option("--quick", is_flag=True,
+              help="Reduced sizes (planes 24 x 24, 100 samples, fewer phases and d steps; "
+                   "the table says so): minutes instead of hours.")
+@click.option("--only", default=None, metavar="IDS",
+              help="Only these statements: S9, S9-S11 or S9,S12 (default: all 89).")
+@click.option("-o", "--output", default="results/reproduce.md", show_default=True,
+              type=click.Path(dir_okay=False), help="Where to write the table (markdown).")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Worker processes for the sweeps (default: all cores).")
+@click.option("--cached-only", is_flag=True,
+              help="Compute nothing: use the runs cached in results/reproduce/ and mark the "
+                   "statements whose runs are missing as not checked yet.")
+@click.option("--cache", type=click.Path(file_okay=False), default=None,
+              help="Folder of the cached runs (default: results/reproduce/ of the "
+                   "repository).")
+@click.option("-q", "--quiet", is_flag=True, help="No progress lines.")
+@_interruptible
+@_user_errors
+def reproduce(quick, only, output, workers, cached_only, cache, quiet):
+    """Check the study's statements one by one and write a table (results/reproduce.md):
+    the study's value, softimpact's with its interval, the runs, and a verdict.
+
+    Runs are cached in results/reproduce/ under a hash of their scene text: a finished
+    run is reused and an interrupted sweep resumes.
+    """
+    from .reproduce.report import reproduce as run_reproduce
+    from .reproduce.runs import CACHE
+    from .reproduce.table import summary
+
+    echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
+    try:
+        rows, text = run_reproduce(quick=quick, only=only, workers=workers,
+                                   cached_only=cached_only,
+                                   cache=Path(cache) if cache else CACHE, echo=echo)
+    except ValueError as exc:
+        raise ConfigError(str(exc)) from None
+    out = Path(output)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(text)
+    counts = ", ".join(f"{v} {n}" for v, n in summary(rows).items() if n)
+    click.echo(f"reproduce: {len(rows)} statements ({counts}) -> {out}")
+
+
 if __name__ == "__main__":
     main()
