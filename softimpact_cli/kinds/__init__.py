@@ -77,6 +77,7 @@ class AnalysisKind:
     after_sweep(ds, scene, catalogue) -> Dataset : a sweep kind's extra variables
     report(ds) -> str : what the CLI prints after a run besides the one-line outcome
     info_lines(ds) -> list[str] : lines of ``info`` that only this kind prints (at the top)
+    info_after(ds) -> list[str] : such lines after the table of keys
     info_catalogue : ``info`` lists the result's catalogue (a design prints its own)
     outcome_counts(ds) -> (trajectories, unresolved, diverged) or None : for the warnings
         on mostly unresolved or diverged results (None: the kind has no such counts)
@@ -98,6 +99,7 @@ class AnalysisKind:
     after_sweep: Callable[..., Any] | None = None
     report: Callable[[Any], str] | None = None
     info_lines: Callable[[Any], list[str]] | None = None
+    info_after: Callable[[Any], list[str]] | None = None
     outcome_counts: Callable[[Any], tuple[int, int, int] | None] | None = None
     compare: Callable[..., dict] | None = None
     compare_text: Callable[[dict, int], list[str]] | None = None

@@ -128,5 +128,5 @@ def compare_text(report: dict, max_points: int) -> list[str]:
 
 KINDS = (AnalysisKind("bifurcation", "each solution followed along d, destruction points "
                       "located", read, plan, sections=sections, shrink=shrink, run=run,
-                      check=check, info_lines=info_lines, compare=compare,
+                      check=check, info_after=info_lines, compare=compare,
                       compare_text=compare_text, progress_unit="branches"),)

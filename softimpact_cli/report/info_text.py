@@ -83,6 +83,8 @@ def format_summary(summary: dict, ds, max_points: int = 50) -> str:
         elif key == "steps_by_method" and all(isinstance(v, dict) for v in value.values()):
             value = "; ".join(f"{phase}: {text(v)}" for phase, v in value.items())  # per phase
         lines.append(f"{key:28s} {text(value)}")
+    if kind is not None and kind.info_after is not None:
+        lines += kind.info_after(ds)
     if "orbit" in summary:
         lines.append(f"orbit: {len(summary['orbit'])} section point(s) of "
                      f"({', '.join(summary['variables'])})")
