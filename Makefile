@@ -155,6 +155,16 @@ bench-extreme: $(STAMP)
 	$(PY) benchmarks/bench_auto_overhead.py --append results/bench/extreme.md
 .PHONY: bench-extreme
 
+# Kernel speed of this checkout against revision BASE (default: the last commit, i.e. the
+# uncommitted changes), as ratios, with every trajectory's counters compared: run it
+# before and after a refactor (benchmarks/bench_refactor.py; ~5 min on 2 cores).
+BASE ?= HEAD
+bench-compare: $(STAMP)
+	@base=$$(mktemp -d) && git archive $(BASE) | tar -x -C $$base && \
+	$(PY) benchmarks/bench_refactor.py --base $$base $(BENCH_ARGS); \
+	status=$$?; rm -rf $$base; exit $$status
+.PHONY: bench-compare
+
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 

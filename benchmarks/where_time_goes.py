@@ -89,11 +89,9 @@ def rhs_floor(periods: int = 400, repeats: int = 5) -> str:
     problem = Problem(scene.system, scene.values, scene.integrator)
     T = problem.period
     y0 = np.array([1.0, 0.0, -1.0, 0.0])
-    A, b, rel, contact = problem.kernel_args()
-
     def integrate():
-        return orbit_kernels.flow(problem.advance, problem.system.rhs, problem.params,
-                                  y0.copy(), 0.0, periods * T, A, b, rel, contact,
+        return orbit_kernels.flow(problem.stepper, problem.system.rhs, problem.params,
+                                  y0.copy(), 0.0, periods * T, problem.kernel_args(),
                                   problem.options())
 
     @njit

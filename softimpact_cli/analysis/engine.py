@@ -72,8 +72,9 @@ class Problem:
         return opts
 
     @property
-    def advance(self):
-        return METHODS[self.integrator.resolved_method].advance
+    def stepper(self):
+        """The integration method as the kernels take it (``kernels.driver.Stepper``)."""
+        return METHODS[self.integrator.resolved_method].STEPPER
 
     def kernel_args(self):
         sf = self.surfaces
@@ -175,29 +176,29 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
         known = no_known_orbits(y0.shape[0])
     if recurrence is None:
         recurrence = _no_cells()
-    A, b, rel, contact = problem.kernel_args()
-    (status, q, n_used, orbit_pts, contacts, max_g, counters, captured,
-     cell_code) = orbit.classify_near(
-        problem.advance, problem.system.rhs, problem.params, y0, float(t0), problem.period,
-        A, b, rel, contact, problem.options(), s.max_periods, s.max_orbit_period,
-        s.convergence_tol, known.points, known.periods, known.max_g, known.capture_tol,
-        known.capture_hits, recurrence.table, recurrence.size, recurrence.hits,
-        recurrence.visited,
+    out = orbit.classify_near(
+        problem.stepper, problem.system.rhs, problem.params, y0, (float(t0), problem.period),
+        problem.kernel_args(), problem.options(),
+        (s.max_periods, s.max_orbit_period, s.convergence_tol),
+        orbit.Known(known.points, known.periods, known.max_g, known.capture_tol,
+                    known.capture_hits),
+        orbit.Cells(recurrence.table, recurrence.size, recurrence.hits, recurrence.visited),
     )
+    q = int(out.period)
     return Classification(
-        status=int(status), period=int(q), periods_used=int(n_used),
-        orbit=orbit_pts[:q].copy(), contacts=int(contacts), max_penetration=float(max_g),
-        counters=counter_dict(counters),
-        captured=int(captured), cell_code=int(cell_code),
+        status=int(out.status), period=q, periods_used=int(out.periods_used),
+        orbit=out.orbit[:q].copy(), contacts=int(out.contacts),
+        max_penetration=float(out.max_g), counters=counter_dict(out.counters),
+        captured=int(out.captured), cell_code=int(out.cell_code),
     )
 
 
 def flow(problem: Problem, state, t0: float, t1: float) -> tuple[int, np.ndarray, float]:
     """(status, state at t1, max of the contact function on [t0, t1]) from ``state`` at t0."""
     y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
-    A, b, rel, contact = problem.kernel_args()
-    status, y, max_g, _ = orbit.flow(problem.advance, problem.system.rhs, problem.params, y0,
-                                     float(t0), float(t1), A, b, rel, contact, problem.options())
+    status, y, max_g, _ = orbit.flow(problem.stepper, problem.system.rhs, problem.params, y0,
+                                     float(t0), float(t1), problem.kernel_args(),
+                                     problem.options())
     return int(status), y, float(max_g)
 
 
@@ -231,10 +232,9 @@ def record_trajectory(problem: Problem, state, t0: float, periods: int,
     n0 = int(orbit.first_section(float(t0), T))
     t_end = (n0 + periods) * T
     capacity = int(np.floor((t_end - t0) / dt + 1e-9)) + 1
-    A, b, rel, contact = problem.kernel_args()
-    status, st, sy, n, sec_t, sec_y, contacts, max_g, counters = orbit.record(
-        problem.advance, problem.system.rhs, problem.params, y0, float(t0), T, int(periods),
-        A, b, rel, contact, problem.options(dt, float(t0)), capacity,
-    )
-    return Trajectory(int(status), st[:n], sy[:n], sec_t, sec_y, contacts, max_g,
-                      counter_dict(counters))
+    out = orbit.record(problem.stepper, problem.system.rhs, problem.params, y0, (float(t0), T),
+                       int(periods), problem.kernel_args(), problem.options(dt, float(t0)),
+                       capacity)
+    n = out.n_samples
+    return Trajectory(int(out.status), out.sample_t[:n], out.sample_y[:n], out.section_t,
+                      out.section_y, out.contacts, out.max_g, counter_dict(out.counters))

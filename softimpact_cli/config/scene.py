@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from ..kernels import ALIASES, METHOD_MODULES
 from ..kernels.cells import MAX_CELL_DIM
 from ..kinds import ANALYSIS_KINDS, KINDS, SWEEP_KINDS, SceneContext  # noqa: F401
 from ..kinds.bifurcation import BifurcationAnalysis  # noqa: F401
@@ -40,7 +41,7 @@ from .sweep import (
     InitialConditions,
 )
 
-METHODS = ("auto", "rk4", "dopri5", "rodas4", "stiff")
+METHODS = (*METHOD_MODULES, *ALIASES)  # the kernels' registry
 
 
 @dataclass(frozen=True)
@@ -67,7 +68,7 @@ class IntegratorSettings:
     def resolved_method(self) -> str:
         """The kernel method the run uses ('stiff' is the L-stable Rodas4; 'auto' runs the
         adaptive explicit pair and switches to Rodas4 where its step is stability bound)."""
-        return {"stiff": "rodas4"}.get(self.method, self.method)
+        return ALIASES.get(self.method, self.method)
 
 
 @dataclass(frozen=True)

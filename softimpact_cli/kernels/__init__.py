@@ -4,18 +4,28 @@ Kernels import only numpy, numba and math; they never raise, print or touch file
 Every integrator module provides ``advance`` with one signature, so the trajectory
 kernels take the method as a first-class function:
 
-    advance(rhs, p, y, t, t_end, A, b, relevance, contact, opts, istate, fstate, work,
-            sample_t, sample_y) -> status
+    advance(rhs, p, y, t, t_end, surfaces, opts, state, samples) -> status
+
+with the bundles ``surfaces = (A, b, relevance, contact)``, ``state = (istate, fstate,
+work)`` (``orbit.new_state``) and ``samples = (sample_t, sample_y)``. A method module
+holds its tableau, step, error norm, dense output and controller constants and hands them
+to a loop of ``driver`` (see there); adding one is its module and a line in METHOD_MODULES.
 """
+
+from importlib import import_module
 
 from .numba_cache import source_keyed_cache, stabilise
 
+# method name -> its module; "auto" switches between dopri5's and rodas4's steps per step
+# and per contact mode. The order is the order scenes list them in (the default first).
+METHOD_MODULES = {"auto": "auto", "rk4": "rk4", "dopri5": "dopri5", "rodas4": "rosenbrock"}
+ALIASES = {"stiff": "rodas4"}  # other names a scene may use
+
+_SHARED = ("cells", "codes", "common", "control", "dense", "driver", "layout", "linalg",
+           "orbit", "switching")
 with source_keyed_cache():  # every jitted module of the package, imported here
-    from . import auto, cells, common, dense, dopri5, orbit, rk4, rosenbrock, switching
-
-for _module in (auto, cells, common, dense, dopri5, orbit, rk4, rosenbrock, switching):
+    _modules = {name: import_module(f".{name}", __name__)
+                for name in (*_SHARED, *METHOD_MODULES.values())}
+for _module in _modules.values():
     stabilise(_module)
-
-# method name -> module (each has ``advance`` and ``ORDER``; "auto" switches between
-# dopri5 and rodas4 per step and per contact mode)
-METHODS = {"rk4": rk4, "dopri5": dopri5, "rodas4": rosenbrock, "auto": auto}
+METHODS = {name: _modules[module] for name, module in METHOD_MODULES.items()}

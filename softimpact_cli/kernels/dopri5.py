@@ -1,46 +1,20 @@
-"""Dormand-Prince 5(4) with Hairer's 4th-order dense output, frozen mode, located switches.
+"""Dormand-Prince 5(4) with Hairer's 4th-order dense output.
 
 The method is data: the tableau ``A``, ``B``, ``C``, the error weights ``E = B - B_hat``
-and the dense-output weights ``D``. ``advance`` integrates from ``t`` to ``t_end`` (landing
-exactly on ``t_end``), freezing the contact mode over each step; when the accepted step's
-dense output shows that a watched surface was crossed (or grazed), the step is redone up
-to the crossing, the mode switches there and the method restarts (no stage is reused
-across a switch: the "made_jump" rule).
+and the dense-output weights ``D``; its step, error norm and dense output are the hooks
+``advance`` hands to the adaptive loop of ``driver`` (frozen mode, located switches, no
+stage reused across a switch: the "made_jump" rule).
 """
 
-from math import isfinite, sqrt
+from math import sqrt
 
 import numpy as np
 from numba import njit
 
-from .codes import DIVERGED, OK, STEP_BUDGET, STEP_UNDERFLOW, TOO_MANY_SWITCHES
-from .common import (
-    apply_switch,
-    out_of_bounds,
-    plain_mode_update,
-    track_contact,
-    track_contact_at,
-)
-from .dense import write_samples
-from .layout import (
-    ATOL,
-    BOUND,
-    H_MAX,
-    K0,
-    LOCATE,
-    M0,
-    MAX_STEPS,
-    MAX_SWITCHES,
-    MODE,
-    N_REJECTED,
-    N_RHS,
-    N_STEPS,
-    RTOL,
-    YNEW,
-    YTMP,
-    H,
-)
-from .switching import earliest_exit, mode_of
+from .control import Controller
+from .driver import Stepper, adaptive, no_change, no_refinement, no_test, same_method, single
+from .layout import ATOL, K0, M0, RTOL, YNEW, YTMP
+from .switching import mode_of
 
 ORDER = 5
 STAGES = 7
@@ -77,7 +51,6 @@ D = np.array(
 SAFETY = 0.9
 FAC_MIN = 0.2
 FAC_MAX = 10.0
-H_FLOOR = 1e-13  # relative to the interval being advanced
 
 
 @njit(cache=True)
@@ -133,95 +106,45 @@ def dense_coefficients(y, h, work):
         work[M0 + 4, i] = r5
 
 
+# ---------------------------------------------------------------------------------------
+# the method's hooks for the driver (``driver.Stepper``)
+
+
 @njit(cache=True)
-def advance(rhs, p, y, t, t_end, A_s, b_s, relevance, contact, opts, istate, fstate, work,
-            sample_t, sample_y):
-    """Integrate ``y`` (in place) from ``t`` to exactly ``t_end``; return a status code."""
-    locate = opts[LOCATE] != 0.0
-    n_surf = A_s.shape[0]
-    coef = np.empty(5)
-    span = t_end - t
-    h_floor = H_FLOOR * max(span, 1e-300)
-    h = fstate[H]
-    if h <= 0.0:
-        h = min(opts[H_MAX], 0.01 * span)
-    need_first = True
-    steps = 0
-    switches = 0
-    while t_end - t > 1e-14 * max(1.0, abs(t_end)):
-        mode = istate[MODE]
-        if need_first:
-            rhs(t, y, p, mode, work[K0])
-            istate[N_RHS] += 1
-            need_first = False
-        h = min(h, opts[H_MAX])
-        truncated = False
-        h_step = h
-        if t + 1.0001 * h >= t_end:
-            h_step = t_end - t
-            truncated = True
-        stages(rhs, p, t, y, h_step, mode, locate, A_s, b_s, work)
-        istate[N_RHS] += STAGES - 1
-        err = error_norm(y, h_step, opts, work)
-        if not isfinite(err) or err > 1.0:
-            istate[N_REJECTED] += 1
-            fac = FAC_MIN if not isfinite(err) else max(FAC_MIN, SAFETY * err ** (-1.0 / ORDER))
-            h = h_step * fac
-            if h < h_floor:
-                fstate[H] = h
-                return STEP_UNDERFLOW
-            continue
-        fac = FAC_MAX if err == 0.0 else min(FAC_MAX, max(FAC_MIN, SAFETY * err ** (-1.0 / ORDER)))
-        h_next = h_step * fac
-        if truncated:
-            h_next = max(h_next, h)  # landing on t_end says nothing against the old step
+def begin(jac, rhs, p, t, y, mode, work, variant):
+    rhs(t, y, p, mode, work[K0])
+    return 1
 
-        dense_coefficients(y, h_step, work)
-        mask = 0
-        if locate and n_surf > 0:
-            u, mask = earliest_exit(work, A_s, b_s, relevance, mode, coef)
-            if mask != 0:
-                # Redo the step up to the crossing, in the same frozen mode.
-                h_step = u * h_step
-                h_next = h  # the controller's proposal stands
-                truncated = False
-                if h_step <= 0.0:  # leaves right at the start (grazing restart)
-                    apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
-                    need_first = True
-                    switches += 1
-                    if switches > opts[MAX_SWITCHES]:
-                        return TOO_MANY_SWITCHES
-                    continue
-                stages(rhs, p, t, y, h_step, mode, locate, A_s, b_s, work)
-                istate[N_RHS] += STAGES - 1
-                dense_coefficients(y, h_step, work)
 
-        # Accept [t, t + h_step].
-        if locate:
-            track_contact(work, A_s, b_s, contact, fstate, coef)
-        write_samples(work, t, h_step, opts, istate, sample_t, sample_y)
-        t = t_end if truncated else t + h_step
-        for i in range(y.shape[0]):
-            y[i] = work[YNEW, i]
-            work[K0, i] = work[K0 + 6, i]
-        steps += 1
-        istate[N_STEPS] += 1
-        if out_of_bounds(y, opts[BOUND]):
-            fstate[H] = h_next
-            return DIVERGED
-        if mask != 0:
-            apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
-            need_first = True
-            switches += 1
-            if switches > opts[MAX_SWITCHES]:
-                return TOO_MANY_SWITCHES
-        elif not locate and n_surf > 0:
-            # K6 was evaluated in the mode of its own state, so FSAL still holds.
-            plain_mode_update(y, A_s, b_s, contact, istate)
-            track_contact_at(y, A_s, b_s, contact, fstate)
-        h = h_next
-        if steps > opts[MAX_STEPS]:
-            fstate[H] = h
-            return STEP_BUDGET
-    fstate[H] = h
-    return OK
+@njit(cache=True)
+def step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant):
+    stages(rhs, p, t, y, h, mode, stage_A.shape[0] == 0, stage_A, stage_b, work)
+    return True, STAGES - 1
+
+
+@njit(cache=True)
+def error(y, h, work, opts, variant):
+    return error_norm(y, h, opts, work)
+
+
+@njit(cache=True)
+def controller(variant):
+    return Controller(ORDER, SAFETY, FAC_MIN, FAC_MAX, FAC_MIN, False)
+
+
+@njit(cache=True)
+def dense(y, h, work, variant):
+    dense_coefficients(y, h, work)
+
+
+@njit(cache=True)
+def finish(work, istate, variant):
+    """First same as last: stage 7 is f at the new state."""
+    for i in range(work.shape[1]):
+        work[K0, i] = work[K0 + 6, i]
+    return False
+
+
+STEPPER = Stepper(loop=adaptive, variant=single, begin=begin, step=step, error=error,
+                  controller=controller, dense=dense, refine=no_refinement, accepted=no_test,
+                  finish=finish, change_method=no_change, enter_mode=same_method, jac=None)

@@ -42,9 +42,24 @@ H = 0  # the step the adaptive controller proposes next
 MAX_G = 1  # running max of the contact function x1 - x2 - d (reset per period by callers)
 N_FSTATE = 2
 
-# rows of the work array (shape (WORK_ROWS, dim))
-K0 = 0  # stages K0..K6 use rows 0..6
+# rows of the work array (shape (work_rows(dim), dim)); one array holds every method's
+# scratch, so the driver passes it alone
+K0 = 0  # explicit stages K0..K6 use rows 0..6
 YTMP = 7
-YNEW = 8
+YNEW = 8  # the step's solution (every method)
 M0 = 9  # monomial coefficients of the step's dense output, rows 9..13
-WORK_ROWS = 14
+# Rodas4 (kernels/rosenbrock.py)
+F0 = 14  # f(t, y) at the step's start
+DFDT = 15  # df/dt there
+YT = 16  # a stage's state
+FT = 17  # a stage's right-hand side
+U0 = 18  # stage increments U_1..U_6, rows 18..23
+PIV = 24  # LU pivot rows (as floats: exact for any dimension that fits in memory)
+JAC = 25  # the Jacobian (dim rows), then its LU factors (dim rows), then a squaring
+WORK_ROWS = JAC  # scratch of auto's spectral bound (dim rows): MATRICES blocks of dim rows
+MATRICES = 3
+
+
+def work_rows(dim):
+    """Rows of the work array for a state of ``dim`` variables."""
+    return WORK_ROWS + MATRICES * dim

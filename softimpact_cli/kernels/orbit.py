@@ -16,6 +16,7 @@ is skipped). With recurrence cells (``kernels.cells``) it also stops when the se
 points land, period after period, in cells that earlier trajectories marked with one label.
 """
 
+from collections import namedtuple
 from math import ceil
 
 import numpy as np
@@ -23,8 +24,31 @@ from numba import njit
 
 from .cells import NO_CELL, cell_key, new_cells
 from .codes import CONVERGED, MIXED_CELL, NO_ORBIT, OK, UNRESOLVED
-from .layout import MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
+from .driver import advance
+from .layout import MATRICES, MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
 from .switching import mode_of
+
+# What ``classify_near`` returns (numba hands it to Python as this named tuple):
+# status (status table code); period q in forcing periods (0 unless converged); periods
+# used; orbit (max(max_orbit_period, Q), dim), rows 0..q-1 the orbit's section points in
+# time order (a captured trajectory returns the known orbit); contacts, contact onsets
+# during the last q periods; max_g, max of the contact function x1 - x2 - d over them
+# (>= 0: the orbit is in contact; -inf without contact); counters, the integrator's
+# (N_ISTATE,) istate; captured, the index of the known orbit that captured it, else
+# NO_ORBIT; cell_code, the label code taken from the cells (status CONVERGED, q = 0, orbit
+# unknown), else MIXED_CELL.
+Classified = namedtuple("Classified", ["status", "period", "periods_used", "orbit", "contacts",
+                                       "max_g", "counters", "captured", "cell_code"])
+# The bundles of known stable orbits and of recurrence cells ``classify_near`` takes (see
+# there); built in Python by ``analysis.engine`` or in jitted code by ``no_known`` and
+# ``no_cells``.
+Known = namedtuple("Known", ["points", "periods", "max_g", "capture_tol", "capture_hits"])
+Cells = namedtuple("Cells", ["table", "size", "hits", "visited"])
+# What ``record`` returns: sample_t (n_samples,), sample_y (n_samples, dim), samples
+# written; section_t (n_periods + 1,), section_y (n_periods + 1, dim), contacts and max_g
+# per period (row 0: before the first section); rows after a failure are NaN.
+Recorded = namedtuple("Recorded", ["status", "sample_t", "sample_y", "n_samples", "section_t",
+                                   "section_y", "contacts", "max_g", "counters"])
 
 
 @njit(cache=True)
@@ -35,13 +59,34 @@ def first_section(t0, period):
 
 @njit(cache=True)
 def new_state(y0, A_s, b_s):
+    """(istate, fstate, work) of a trajectory starting at ``y0``: the ``state`` bundle."""
     dim = y0.shape[0]
     istate = np.zeros(N_ISTATE, dtype=np.int64)
     fstate = np.zeros(N_FSTATE)
     fstate[MAX_G] = -np.inf
-    work = np.zeros((WORK_ROWS, dim))
+    work = np.zeros((WORK_ROWS + MATRICES * dim, dim))
     istate[MODE] = mode_of(y0, A_s, b_s)
     return istate, fstate, work
+
+
+@njit(cache=True)
+def no_samples(dim):
+    """The ``samples`` bundle of a trajectory that writes none."""
+    return np.empty(0), np.empty((0, dim))
+
+
+@njit(cache=True)
+def one_period(method, rhs, p, y, t_start, period, surfaces, opts, state, samples):
+    """Advance one forcing period from t_start; (status, contact onsets, max of the contact
+    function during it). A period that starts in contact is in contact."""
+    istate, fstate, _ = state
+    contact = surfaces[3]
+    fstate[MAX_G] = -np.inf
+    if contact >= 0 and (istate[MODE] >> contact) & 1:
+        fstate[MAX_G] = 0.0
+    c_before = istate[N_CONTACTS]
+    status = advance(method, rhs, p, y, t_start, t_start + period, surfaces, opts, state, samples)
+    return status, istate[N_CONTACTS] - c_before, fstate[MAX_G]
 
 
 DISTINCT = 100.0  # sub-period differences below DISTINCT * tol mean "still converging"
@@ -101,186 +146,194 @@ def _nearest_known(y, known, known_q, lim):
 
 
 @njit(cache=True)
-def classify(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact, opts,
-             max_periods, max_orbit_period, tol):
-    """``classify_near`` with no known orbits: stop when the section points repeat."""
-    dim = y0.shape[0]
-    status, q, n, orbit, total, worst, istate, _, _ = classify_near(
-        advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact, opts, max_periods,
-        max_orbit_period, tol, np.zeros((0, 1, dim)), np.zeros(0, dtype=np.int64),
-        np.zeros(0), 0.0, 1, new_cells(), 0.0, 1, np.empty(0, dtype=np.int64))
-    return status, q, n, orbit, total, worst, istate
+def follow_known(y, known, free, streak, last_k, last_j):
+    """The capture streak after section point ``y``: (streak, k, j) with (k, j) the known
+    orbit point within ``capture_tol`` (scaled) of y, if the period was contact ``free``,
+    and the streak counting consecutive periods following one orbit point after point."""
+    scale = 1.0
+    for i in range(y.shape[0]):
+        scale = max(scale, abs(y[i]))
+    hit_k, hit_j = -1, -1
+    if free:
+        hit_k, hit_j = _nearest_known(y, known.points, known.periods, known.capture_tol * scale)
+    if hit_k >= 0 and hit_k == last_k and hit_j == (last_j + 1) % known.periods[hit_k]:
+        return streak + 1, hit_k, hit_j
+    if hit_k >= 0:
+        return 1, hit_k, hit_j
+    return 0, hit_k, hit_j
 
 
 @njit(cache=True)
-def classify_near(advance, rhs, p, y0, t0, period, A_s, b_s, relevance, contact, opts,
-                  max_periods, max_orbit_period, tol, known, known_q, known_max_g,
-                  capture_tol, capture_hits, cells, cell_size, cell_hits, visited):
+def follow_cells(y, n, cells, run, run_code):
+    """Record the cell of section point n in ``visited``; the run of consecutive periods in
+    cells of one label after it: (run, its label code)."""
+    if n >= cells.visited.shape[0]:
+        return run, run_code
+    key = cell_key(y, cells.size)  # every visited key is written, whatever classifies
+    cells.visited[n] = key
+    code = MIXED_CELL
+    if key != NO_CELL and key in cells.table:
+        code = cells.table[key]
+    if code == MIXED_CELL:
+        return 0, run_code
+    if code == run_code:
+        return run + 1, run_code
+    return 1, code
+
+
+@njit(cache=True)
+def known_orbit(known, k, j, orbit):
+    """Write known orbit k into ``orbit`` in time order, ending at its point j; its period."""
+    q = known.periods[k]
+    for i in range(q):
+        orbit[i] = known.points[k, (j - q + 1 + i) % q]
+    return q
+
+
+@njit(cache=True)
+def repeated_orbit(hist, contacts, max_g, n, q, orbit):
+    """Write the last q section points into ``orbit``; (contact onsets, max of the contact
+    function) over those q periods."""
+    depth = hist.shape[0]
+    total = 0
+    worst = -np.inf
+    for i in range(q):
+        kk = (n - q + 1 + i) % depth
+        orbit[i] = hist[kk]
+        total += contacts[kk]
+        worst = max(worst, max_g[kk])
+    return total, worst
+
+
+@njit(cache=True)
+def no_known(dim):
+    """The ``known`` bundle without orbits (capture off)."""
+    return Known(np.zeros((0, 1, dim)), np.zeros(0, dtype=np.int64), np.zeros(0), 0.0, 1)
+
+
+@njit(cache=True)
+def no_cells():
+    """The ``cells`` bundle without recurrence cells."""
+    return Cells(new_cells(), 0.0, 1, np.empty(0, dtype=np.int64))
+
+
+@njit(cache=True)
+def classify(method, rhs, p, y0, section, surfaces, opts, limits):
+    """``classify_near`` with no known orbits and no cells: stop when the points repeat."""
+    return classify_near(method, rhs, p, y0, section, surfaces, opts, limits,
+                         no_known(y0.shape[0]), no_cells())
+
+
+@njit(cache=True)
+def classify_near(method, rhs, p, y0, section, surfaces, opts, limits, known, cells):
     """Integrate from (t0, y0) until the section points repeat, or follow a known orbit,
-    or the budget ends, or it fails.
+    or the budget ends, or it fails; returns a ``Classified``.
 
-    known : (K, Q, dim) section points of K known stable orbits in time order (rows
-    0..known_q[k]-1 used); known_q : (K,) their periods; known_max_g : (K,) their max of
-    the contact function; capture_tol, capture_hits : capture after this many consecutive
-    periods, each within capture_tol * max(1, |y|) of the known orbit's next point and
-    without contact (capture_tol = 0 disables capture).
-    cells : {cell key: label code} of earlier trajectories (``kernels.cells``); cell_size
-    (0 disables), cell_hits : take a cell label after this many consecutive periods in
-    cells of that label; visited : (max_periods + 1,) int64, receives the cell keys of
-    the section points in order (its length bounds what is recorded).
-
-    Returns
-    -------
-    status : int (status table code)
-    q : int, period of the orbit in forcing periods (0 unless converged)
-    n_used : int, forcing periods integrated
-    orbit : (max(max_orbit_period, Q), dim) array, rows 0..q-1 the orbit's section points in
-            time order (a captured trajectory returns the known orbit)
-    contacts : int, contact onsets during the last q periods
-    max_g : float, max of the contact function x1 - x2 - d over the last q periods
-            (>= 0 means the orbit is in contact; -inf for systems without contact)
-    counters : (N_ISTATE,) int64 array of the integrator's counters
-    captured : int, index of the known orbit that captured the trajectory, else -1
-    cell_code : int, the label code taken from the cells (status CONVERGED, q = 0, orbit
-                unknown), else MIXED_CELL; ``visited`` then holds n_used + 1 keys
+    section = (t0, T); surfaces = (A, b, relevance, contact); limits = (max_periods,
+    max_orbit_period, tol) of the convergence test.
+    known = Known(points (K, Q, dim): K known stable orbits in time order, periods (K,),
+    max_g (K,) of the contact function, capture_tol, capture_hits): captured after
+    capture_hits consecutive contact-free periods, each within capture_tol * max(1, |y|)
+    of the known orbit's next point (capture_tol = 0: off).
+    cells = Cells(table {cell key: label code} (``kernels.cells``), size (0: off), hits,
+    visited (max_periods + 1,) int64): a cell label after ``hits`` consecutive periods in
+    cells of that label; ``visited`` receives the section points' cell keys in order.
     """
+    t0, period = section
+    max_periods, max_orbit_period, tol = limits
     dim = y0.shape[0]
     y = y0.copy()
-    istate, fstate, work = new_state(y, A_s, b_s)
-    empty_t = np.empty(0)
-    empty_y = np.empty((0, dim))
+    state = new_state(y, surfaces[0], surfaces[1])
+    istate = state[0]
+    samples = no_samples(dim)
     depth = 2 * max_orbit_period + 1
     hist = np.empty((depth, dim))
     contacts = np.zeros(depth, dtype=np.int64)
     max_g = np.full(depth, -np.inf)
-    orbit = np.zeros((max(max_orbit_period, known.shape[1]), dim))
+    orbit = np.zeros((max(max_orbit_period, known.points.shape[1]), dim))
     n0 = first_section(t0, period)
-    t = t0
-    if n0 * period > t:
-        status = advance(rhs, p, y, t, n0 * period, A_s, b_s, relevance, contact, opts,
-                         istate, fstate, work, empty_t, empty_y)
+    if n0 * period > t0:
+        status = advance(method, rhs, p, y, t0, n0 * period, surfaces, opts, state, samples)
         if status != OK:
-            return status, 0, 0, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL
+            return Classified(status, 0, 0, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
     hist[0] = y
-    use_cells = cell_size > 0.0 and visited.shape[0] > 0
-    run, run_code = 0, MIXED_CELL
+    use_cells = cells.size > 0.0 and cells.visited.shape[0] > 0
     if use_cells:
-        visited[0] = cell_key(y, cell_size)
-    use_known = capture_tol > 0.0 and known.shape[0] > 0
-    streak, last_k, last_j = 0, -1, -1
+        cells.visited[0] = cell_key(y, cells.size)
+    use_known = known.capture_tol > 0.0 and known.points.shape[0] > 0
+    run, run_code, streak, last_k, last_j = 0, MIXED_CELL, 0, -1, -1
     for n in range(1, max_periods + 1):
-        fstate[MAX_G] = -np.inf
-        if contact >= 0 and (istate[MODE] >> contact) & 1:
-            fstate[MAX_G] = 0.0  # a period that starts in contact is in contact
-        c_before = istate[N_CONTACTS]
-        t_start = (n0 + n - 1) * period
-        status = advance(rhs, p, y, t_start, t_start + period, A_s, b_s, relevance, contact,
-                         opts, istate, fstate, work, empty_t, empty_y)
-        if status != OK:
-            return status, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL
         k = n % depth
+        status, contacts[k], max_g[k] = one_period(method, rhs, p, y, (n0 + n - 1) * period,
+                                                   period, surfaces, opts, state, samples)
+        if status != OK:
+            return Classified(status, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
         hist[k] = y
-        contacts[k] = istate[N_CONTACTS] - c_before
-        max_g[k] = fstate[MAX_G]
-        if use_cells and n < visited.shape[0]:  # every visited key is written, whatever
-            key = cell_key(y, cell_size)        # classifies the trajectory below
-            visited[n] = key
-            code = cells.get(key, MIXED_CELL) if key != NO_CELL else MIXED_CELL
-            if code == MIXED_CELL:
-                run = 0
-            elif code == run_code:
-                run += 1
-            else:
-                run, run_code = 1, code
+        if use_cells:
+            run, run_code = follow_cells(y, n, cells, run, run_code)
         if use_known:
-            scale = 1.0
-            for i in range(dim):
-                scale = max(scale, abs(y[i]))
-            hit_k, hit_j = -1, -1
-            if contacts[k] == 0 and not (contact >= 0 and (istate[MODE] >> contact) & 1):
-                hit_k, hit_j = _nearest_known(y, known, known_q, capture_tol * scale)
-            if hit_k >= 0 and hit_k == last_k and hit_j == (last_j + 1) % known_q[hit_k]:
-                streak += 1
-            elif hit_k >= 0:
-                streak = 1
-            else:
-                streak = 0
-            last_k, last_j = hit_k, hit_j
-            if streak >= capture_hits:
-                q = known_q[hit_k]
-                for i in range(q):  # the known orbit, time order, ending at point hit_j
-                    orbit[i] = known[hit_k, (hit_j - q + 1 + i) % q]
-                return CONVERGED, q, n, orbit, 0, known_max_g[hit_k], istate, hit_k, MIXED_CELL
-        if run >= cell_hits:
-            return CONVERGED, 0, n, orbit, 0, -np.inf, istate, -1, run_code
+            free = contacts[k] == 0 and not (surfaces[3] >= 0 and (istate[MODE] >> surfaces[3]) & 1)
+            streak, last_k, last_j = follow_known(y, known, free, streak, last_k, last_j)
+            if streak >= known.capture_hits:
+                q = known_orbit(known, last_k, last_j, orbit)
+                return Classified(CONVERGED, q, n, orbit, 0, known.max_g[last_k], istate, last_k,
+                                  MIXED_CELL)
+        if run >= cells.hits:
+            return Classified(CONVERGED, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, run_code)
         q = _repeat_period(hist, n, depth, max_orbit_period, tol)
         if q > 0:
-            total = 0
-            worst = -np.inf
-            for i in range(q):
-                kk = (n - q + 1 + i) % depth
-                orbit[i] = hist[kk]
-                total += contacts[kk]
-                worst = max(worst, max_g[kk])
-            return CONVERGED, q, n, orbit, total, worst, istate, NO_ORBIT, MIXED_CELL
-    return UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL
+            total, worst = repeated_orbit(hist, contacts, max_g, n, q, orbit)
+            return Classified(CONVERGED, q, n, orbit, total, worst, istate, NO_ORBIT, MIXED_CELL)
+    return Classified(UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
 
 
 @njit(cache=True)
-def record(advance, rhs, p, y0, t0, period, n_periods, A_s, b_s, relevance, contact, opts,
-           n_samples):
-    """Integrate n_periods forcing periods from (t0, y0), writing dense samples.
+def record(method, rhs, p, y0, section, n_periods, surfaces, opts, n_samples):
+    """Integrate n_periods forcing periods from section = (t0, T), writing dense samples;
+    returns a ``Recorded``.
 
     ``opts[SAMPLE_DT]``/``opts[SAMPLE_T0]`` set the sampling; ``n_samples`` is the capacity.
-    Returns (status, sample_t, sample_y, n_written, section_t, section_y, contacts per
-    period, max contact function per period, counters); section arrays have n_periods + 1
-    rows (row 0 is the first section at or after t0); rows after a failure are NaN.
+    Section arrays have n_periods + 1 rows (row 0 is the first section at or after t0).
     """
+    t0, period = section
     dim = y0.shape[0]
     y = y0.copy()
-    istate, fstate, work = new_state(y, A_s, b_s)
-    sample_t = np.full(n_samples, np.nan)
-    sample_y = np.full((n_samples, dim), np.nan)
+    state = new_state(y, surfaces[0], surfaces[1])
+    istate, fstate, _ = state
+    samples = (np.full(n_samples, np.nan), np.full((n_samples, dim), np.nan))
     section_t = np.full(n_periods + 1, np.nan)
     section_y = np.full((n_periods + 1, dim), np.nan)
     contacts = np.zeros(n_periods + 1, dtype=np.int64)
     max_g = np.full(n_periods + 1, -np.inf)
     n0 = first_section(t0, period)
-    t = t0
     status = OK
-    if n0 * period > t:
-        status = advance(rhs, p, y, t, n0 * period, A_s, b_s, relevance, contact, opts,
-                         istate, fstate, work, sample_t, sample_y)
+    if n0 * period > t0:
+        status = advance(method, rhs, p, y, t0, n0 * period, surfaces, opts, state, samples)
     if status == OK:
         section_t[0] = n0 * period
         section_y[0] = y
         contacts[0] = istate[N_CONTACTS]
         max_g[0] = fstate[MAX_G]
         for n in range(1, n_periods + 1):
-            fstate[MAX_G] = -np.inf
-            if contact >= 0 and (istate[MODE] >> contact) & 1:
-                fstate[MAX_G] = 0.0
-            c_before = istate[N_CONTACTS]
             t_start = (n0 + n - 1) * period
-            status = advance(rhs, p, y, t_start, t_start + period, A_s, b_s, relevance,
-                             contact, opts, istate, fstate, work, sample_t, sample_y)
+            status, c, g = one_period(method, rhs, p, y, t_start, period, surfaces, opts,
+                                      state, samples)
             if status != OK:
                 break
             section_t[n] = t_start + period
             section_y[n] = y
-            contacts[n] = istate[N_CONTACTS] - c_before
-            max_g[n] = fstate[MAX_G]
-    return (status, sample_t, sample_y, istate[N_SAMPLES], section_t, section_y, contacts, max_g,
-            istate)
+            contacts[n] = c
+            max_g[n] = g
+    return Recorded(status, samples[0], samples[1], istate[N_SAMPLES], section_t, section_y,
+                    contacts, max_g, istate)
 
 
 @njit(cache=True)
-def flow(advance, rhs, p, y0, t0, t1, A_s, b_s, relevance, contact, opts):
+def flow(method, rhs, p, y0, t0, t1, surfaces, opts):
     """State at t1 of the trajectory through (t0, y0). Returns (status, y, max_g, counters)."""
     y = y0.copy()
-    istate, fstate, work = new_state(y, A_s, b_s)
+    state = new_state(y, surfaces[0], surfaces[1])
     status = OK
     if t1 > t0:
-        status = advance(rhs, p, y, t0, t1, A_s, b_s, relevance, contact, opts, istate, fstate,
-                         work, np.empty(0), np.empty((0, y.shape[0])))
-    return status, y, fstate[MAX_G], istate
+        status = advance(method, rhs, p, y, t0, t1, surfaces, opts, state, no_samples(y.shape[0]))
+    return status, y, state[1][MAX_G], state[0]

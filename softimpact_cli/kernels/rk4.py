@@ -8,16 +8,14 @@ integration restarts there before continuing to the next grid point. With
 ``opts[LOCATE] = 0`` each stage takes its mode from its own state: the study's plain scheme.
 """
 
-from math import ceil
-
 import numpy as np
 from numba import njit
 
-from .codes import DIVERGED, OK, TOO_MANY_SWITCHES
-from .common import apply_switch, out_of_bounds, plain_mode_update, track_contact, track_contact_at
-from .dense import hermite_coefficients, write_samples
-from .layout import BOUND, H_FIXED, K0, LOCATE, MAX_SWITCHES, MODE, N_RHS, N_STEPS, YNEW, YTMP
-from .switching import earliest_exit, mode_of
+from .control import Controller
+from .dense import hermite_coefficients
+from .driver import Stepper, fixed, no_change, no_refinement, no_test, same_method, single
+from .layout import K0, YNEW, YTMP
+from .switching import mode_of
 
 ORDER = 4
 STAGES = 4
@@ -27,7 +25,7 @@ B = np.array([1 / 6, 1 / 3, 1 / 3, 1 / 6])
 
 
 @njit(cache=True)
-def step(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
+def rk4_step(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
     """One RK4 step from (t, y) with row K0 = f(t, y); result in YNEW, f(t+h, y_new) in K0+4."""
     dim = y.shape[0]
     for s in range(1, STAGES):
@@ -44,68 +42,46 @@ def step(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
     rhs(t + h, work[YNEW], p, m, work[K0 + 4])
 
 
+# ---------------------------------------------------------------------------------------
+# the method's hooks for the driver (``driver.Stepper``)
+
+
 @njit(cache=True)
-def advance(rhs, p, y, t, t_end, A_s, b_s, relevance, contact, opts, istate, fstate, work,
-            sample_t, sample_y):
-    """Integrate ``y`` (in place) from ``t`` to exactly ``t_end``; return a status code."""
-    locate = opts[LOCATE] != 0.0
-    n_surf = A_s.shape[0]
-    coef = np.empty(5)
-    t_start = t
-    n = max(1, int(ceil((t_end - t_start) / opts[H_FIXED] - 1e-9)))
-    dt = (t_end - t_start) / n
-    k = 1
-    need_first = True
-    switches = 0
-    while k <= n:
-        target = t_end if k == n else t_start + k * dt
-        h = target - t
-        if h <= 1e-14 * max(1.0, abs(target)):
-            k += 1
-            continue
-        mode = istate[MODE]
-        if need_first:
-            rhs(t, y, p, mode, work[K0])
-            istate[N_RHS] += 1
-            need_first = False
-        step(rhs, p, t, y, h, mode, locate, A_s, b_s, work)
-        istate[N_RHS] += STAGES
-        hermite_coefficients(work, y, work[YNEW], work[K0], work[K0 + 4], h)
-        mask = 0
-        if locate and n_surf > 0:
-            u, mask = earliest_exit(work, A_s, b_s, relevance, mode, coef)
-            if mask != 0:
-                h = u * h
-                if h <= 0.0:
-                    apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
-                    need_first = True
-                    switches += 1
-                    if switches > opts[MAX_SWITCHES]:
-                        return TOO_MANY_SWITCHES
-                    continue
-                step(rhs, p, t, y, h, mode, locate, A_s, b_s, work)
-                istate[N_RHS] += STAGES
-                hermite_coefficients(work, y, work[YNEW], work[K0], work[K0 + 4], h)
-        if locate:
-            track_contact(work, A_s, b_s, contact, fstate, coef)
-        write_samples(work, t, h, opts, istate, sample_t, sample_y)
-        for i in range(y.shape[0]):
-            y[i] = work[YNEW, i]
-            work[K0, i] = work[K0 + 4, i]
-        istate[N_STEPS] += 1
-        if out_of_bounds(y, opts[BOUND]):
-            return DIVERGED
-        if mask != 0:
-            t = t + h
-            apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
-            need_first = True
-            switches += 1
-            if switches > opts[MAX_SWITCHES]:
-                return TOO_MANY_SWITCHES
-        else:
-            t = target
-            k += 1
-            if not locate and n_surf > 0:
-                plain_mode_update(y, A_s, b_s, contact, istate)
-                track_contact_at(y, A_s, b_s, contact, fstate)
-    return OK
+def begin(jac, rhs, p, t, y, mode, work, variant):
+    rhs(t, y, p, mode, work[K0])
+    return 1
+
+
+@njit(cache=True)
+def step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant):
+    rk4_step(rhs, p, t, y, h, mode, stage_A.shape[0] == 0, stage_A, stage_b, work)
+    return True, STAGES
+
+
+@njit(cache=True)
+def no_error(y, h, work, opts, variant):
+    return 0.0
+
+
+@njit(cache=True)
+def no_controller(variant):
+    return Controller(ORDER, 1.0, 1.0, 1.0, 1.0, False)
+
+
+@njit(cache=True)
+def dense(y, h, work, variant):
+    hermite_coefficients(work, y, work[YNEW], work[K0], work[K0 + 4], h)
+
+
+@njit(cache=True)
+def finish(work, istate, variant):
+    """f at the new state was the step's last evaluation."""
+    for i in range(work.shape[1]):
+        work[K0, i] = work[K0 + 4, i]
+    return False
+
+
+STEPPER = Stepper(loop=fixed, variant=single, begin=begin, step=step, error=no_error,
+                  controller=no_controller, dense=dense, refine=no_refinement,
+                  accepted=no_test, finish=finish, change_method=no_change,
+                  enter_mode=same_method, jac=None)

@@ -8,8 +8,8 @@ import inspect
 import numpy as np
 
 from softimpact_cli.analysis.engine import Problem
-from softimpact_cli.kernels import layout
-from softimpact_cli.kernels.orbit import new_state
+from softimpact_cli.kernels import driver, layout
+from softimpact_cli.kernels.orbit import new_state, no_samples
 from softimpact_cli.systems import get_system
 
 DUFFING_BODY = dict(c=0.05, k1=1.0, k2=0.01, F=1.0, w=1.3)
@@ -24,14 +24,15 @@ def problem(model: str, bodies: int, values: dict, **integrator) -> Problem:
 
 
 def run_advance(pr: Problem, y0, t0: float, t1: float, opts: np.ndarray | None = None):
-    """Call the problem's kernel ``advance`` once over [t0, t1]; (status, y, istate, fstate)."""
+    """Call the kernels' ``driver.advance`` with the problem's method once over [t0, t1];
+    (status, y, istate, fstate)."""
     y = np.array(y0, dtype=np.float64)
-    A, b, rel, contact = pr.kernel_args()
-    istate, fstate, work = new_state(y, A, b)
+    surfaces = pr.kernel_args()
+    istate, fstate, work = new_state(y, surfaces[0], surfaces[1])
     if opts is None:
         opts = pr.options()
-    status = pr.advance(pr.system.rhs, pr.params, y, float(t0), float(t1), A, b, rel, contact,
-                        opts, istate, fstate, work, np.empty(0), np.empty((0, y.size)))
+    status = driver.advance(pr.stepper, pr.system.rhs, pr.params, y, float(t0), float(t1),
+                            surfaces, opts, (istate, fstate, work), no_samples(y.size))
     return int(status), y, istate, fstate
 
 

@@ -14,7 +14,7 @@ import pytest
 from numba import njit
 
 from softimpact_cli.analysis.engine import COUNTER_NAMES, classify_state, record_trajectory
-from softimpact_cli.kernels import auto, dopri5, layout, orbit
+from softimpact_cli.kernels import auto, dopri5, driver, layout, orbit
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.systems import get_system
 
@@ -151,15 +151,16 @@ def test_flags_follow_the_modes():
     """On the overdamped orbit the contact mode (bit 1) is flagged stiff and free flight is
     not; every period uses both methods, switching in pairs (into and out of Rodas4)."""
     pr = problem("duffing", 2, OVERDAMPED)
-    A, b, rel, contact = pr.kernel_args()
+    surfaces = pr.kernel_args()
     y = Y0.copy()
-    istate, fstate, work = orbit.new_state(y, A, b)
+    state = orbit.new_state(y, surfaces[0], surfaces[1])
+    istate = state[0]
     opts = pr.options()
     for n in range(4):
         before = istate.copy()
-        status = auto.advance(pr.system.rhs, pr.params, y, n * pr.period, (n + 1) * pr.period,
-                              A, b, rel, contact, opts, istate, fstate, work, np.empty(0),
-                              np.empty((0, 4)))
+        status = driver.advance(auto.STEPPER, pr.system.rhs, pr.params, y, n * pr.period,
+                                (n + 1) * pr.period, surfaces, opts, state,
+                                orbit.no_samples(4))
         step = istate - before
         assert status == OK and istate[layout.AUTO_STIFF_MODES] == 0b10
         assert step[layout.N_CONTACTS] == 1  # Y0 starts in contact: one onset per period
@@ -184,14 +185,14 @@ def test_a_phase_that_is_not_stiff_returns_to_dopri5():
     """Started in Rodas4 with free flight flagged stiff, auto finds h rho < 1 and returns
     within a few steps, clears the flag, and lands where dopri5 lands."""
     pr = problem("duffing", 2, dict(DUFFING_PAIR, d=50.0))  # never in contact
-    A, b, rel, contact = pr.kernel_args()
+    surfaces = pr.kernel_args()
     y = Y0.copy()
-    istate, fstate, work = orbit.new_state(y, A, b)
+    state = orbit.new_state(y, surfaces[0], surfaces[1])
+    istate = state[0]
     istate[layout.AUTO_STIFF] = 1
     istate[layout.AUTO_STIFF_MODES] = 0b1
-    opts = pr.options()
-    status = auto.advance(pr.system.rhs, pr.params, y, 0.0, 3 * pr.period, A, b, rel, contact,
-                          opts, istate, fstate, work, np.empty(0), np.empty((0, 4)))
+    status = driver.advance(auto.STEPPER, pr.system.rhs, pr.params, y, 0.0, 3 * pr.period,
+                            surfaces, pr.options(), state, orbit.no_samples(4))
     assert status == OK
     assert auto.BACK_STEPS <= istate[layout.N_STIFF_STEPS] <= auto.BACK_STEPS + 2
     assert istate[layout.AUTO_STIFF] == 0 and istate[layout.AUTO_STIFF_MODES] == 0

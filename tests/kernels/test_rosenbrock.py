@@ -20,7 +20,7 @@ import pytest
 from numba import njit
 from scipy.integrate import solve_ivp
 
-from softimpact_cli.kernels import dense, dopri5, layout, orbit
+from softimpact_cli.kernels import dense, dopri5, driver, layout, linalg, orbit
 from softimpact_cli.kernels import rosenbrock as ro
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.kernels.orbit import new_state
@@ -124,17 +124,14 @@ def kernel_step(rhs, p, t, y0, h, jac, dfdt, mode=0):
     """One step through the kernel's own ``step`` and ``dense_coefficients``."""
     y0 = np.array(y0, float)
     dim = y0.size
-    work = np.zeros((layout.WORK_ROWS, dim))
-    f0 = np.empty(dim)
-    rhs(t, y0, p, mode, f0)
-    U = np.empty((ro.STAGES, dim))
-    ynew = np.empty(dim)
-    ok = ro.step(rhs, p, t, y0, h, mode, True, np.zeros((0, dim)), np.zeros(0), f0, jac, dfdt,
-                 np.empty((dim, dim)), np.empty(dim, np.int64), U, np.empty(dim), np.empty(dim),
-                 ynew)
+    work = np.zeros((layout.work_rows(dim), dim))
+    rhs(t, y0, p, mode, work[layout.F0])
+    work[layout.JAC:layout.JAC + dim] = jac
+    work[layout.DFDT] = dfdt
+    ok = ro.rodas_step(rhs, p, t, y0, h, mode, True, np.zeros((0, dim)), np.zeros(0), work)
     assert ok
-    ro.dense_coefficients(y0, ynew, U, work)
-    return ynew, U, work
+    ro.dense_coefficients(y0, work)
+    return work[layout.YNEW].copy(), work[layout.U0:layout.U0 + ro.STAGES].copy(), work
 
 
 @pytest.mark.parametrize("h", [0.1, 10.0])
@@ -166,16 +163,16 @@ def test_lu_solves_like_numpy(n):
         rhs = rng.normal(size=n)
         lu = a.copy()
         piv = np.empty(n, np.int64)
-        assert ro.lu_factor(lu, piv)
+        assert linalg.lu_factor(lu, piv)
         x = rhs.copy()
-        ro.lu_solve(lu, piv, x)
+        linalg.lu_solve(lu, piv, x)
         np.testing.assert_allclose(x, np.linalg.solve(a, rhs), rtol=1e-10, atol=1e-12)
 
 
 def test_lu_reports_a_singular_matrix():
     a = np.array([[1.0, 2.0], [2.0, 4.0]])
-    assert not ro.lu_factor(a, np.empty(2, np.int64))
-    assert not ro.lu_factor(np.zeros((3, 3)), np.empty(3, np.int64))
+    assert not linalg.lu_factor(a, np.empty(2, np.int64))
+    assert not linalg.lu_factor(np.zeros((3, 3)), np.empty(3, np.int64))
 
 
 @pytest.mark.parametrize("mode", [0, 1])
@@ -191,7 +188,7 @@ def test_difference_jacobian_matches_the_analytic_one(mode):
         system.rhs(t, y, p, mode, f0)
         Jd = np.empty((4, 4))
         ftd = np.empty(4)
-        n = ro.fd_jacobian(system.rhs, p, t, y, mode, f0, Jd, ftd, np.empty(4), np.empty(4))
+        n = linalg.fd_jacobian(system.rhs, p, t, y, mode, f0, Jd, ftd, np.empty(4), np.empty(4))
         assert n == 6
         # Rounding of f's terms (up to k_c |x1 - x2 - d| ~ 1e5 here in contact) sets the
         # scale; the forcing's phase w t carries ~ eps |w t|, so with the step
@@ -252,16 +249,12 @@ def fixed_step(pr, y0, t1, h, locate=True, analytic=False):
 
 def run(pr, y0, t0, t1, opts=None, analytic=False):
     y = np.array(y0, dtype=np.float64)
-    A, b, rel, contact = pr.kernel_args()
-    istate, fstate, work = new_state(y, A, b)
+    surfaces = pr.kernel_args()
+    istate, fstate, work = new_state(y, surfaces[0], surfaces[1])
     opts = pr.options() if opts is None else opts
-    e_t, e_y = np.empty(0), np.empty((0, y.size))
-    if analytic:
-        status = ro.advance_with_jacobian(pr.system.rhs, pr.system.jacobian, pr.params, y, t0, t1,
-                                          A, b, rel, contact, opts, istate, fstate, work, e_t, e_y)
-    else:
-        status = ro.advance(pr.system.rhs, pr.params, y, t0, t1, A, b, rel, contact, opts,
-                            istate, fstate, work, e_t, e_y)
+    method = ro.with_jacobian(pr.system.jacobian) if analytic else ro.STEPPER
+    status = driver.advance(method, pr.system.rhs, pr.params, y, t0, t1, surfaces, opts,
+                            (istate, fstate, work), (np.empty(0), np.empty((0, y.size))))
     return int(status), y, istate, fstate
 
 
@@ -327,18 +320,18 @@ def test_order_is_kept_through_located_contacts(impacting):
 # against dopri5
 
 
-def classify(pr, advance, rtol, atol, tol, max_periods=3000):
-    A, b, rel, contact = pr.kernel_args()
+def classify(pr, method, rtol, atol, tol, max_periods=3000):
+    """(status, q, periods used, orbit, contacts, max_g, counters), seconds."""
     p2 = pr.with_integrator(rtol=rtol, atol=atol)
     t0 = time.perf_counter()
-    out = orbit.classify(advance, pr.system.rhs, pr.params, Y0_PAIR.copy(), 0.0, pr.period, A, b,
-                         rel, contact, p2.options(), max_periods, 30, tol)
-    return out, time.perf_counter() - t0
+    out = orbit.classify(method, pr.system.rhs, pr.params, Y0_PAIR.copy(), (0.0, pr.period),
+                         pr.kernel_args(), p2.options(), (max_periods, 30, tol))
+    return tuple(out)[:7], time.perf_counter() - t0
 
 
 def warm_up(pr):
-    for advance in (ro.advance, dopri5.advance):
-        classify(pr, advance, 1e-6, 1e-8, 1e-6, max_periods=1)
+    for method in (ro.STEPPER, dopri5.STEPPER):
+        classify(pr, method, 1e-6, 1e-8, 1e-6, max_periods=1)
 
 
 @pytest.mark.parametrize("c_c", [1e3, 1e4])
@@ -349,19 +342,19 @@ def test_stiff_stop_converges_and_agrees_with_a_tight_reference(c_c):
     Reference: dopri5 at rtol 1e-12, atol 1e-14, convergence tol 1e-10."""
     pr = problem("duffing", 2, dict(STIFF, c_c=c_c))
     warm_up(pr)
-    ref, t_ref = classify(pr, dopri5.advance, 1e-12, 1e-14, 1e-10)
+    ref, t_ref = classify(pr, dopri5.STEPPER, 1e-12, 1e-14, 1e-10)
     assert ref[0] == CONVERGED
     q = ref[1]
     # production settings: rtol 1e-8, atol 1e-10, convergence tol 1e-6
-    (st, q_r, n_r, orb_r, contacts, max_g, cnt_r), t_r = classify(pr, ro.advance, 1e-8, 1e-10,
+    (st, q_r, n_r, orb_r, contacts, max_g, cnt_r), t_r = classify(pr, ro.STEPPER, 1e-8, 1e-10,
                                                                    1e-6)
-    (st_d, q_d, n_d, orb_d, _, _, cnt_d), t_d = classify(pr, dopri5.advance, 1e-8, 1e-10, 1e-6)
+    (st_d, q_d, n_d, orb_d, _, _, cnt_d), t_d = classify(pr, dopri5.STEPPER, 1e-8, 1e-10, 1e-6)
     assert st == CONVERGED and st_d == CONVERGED and q_r == q_d == q
     assert max_g > 0.0 and contacts == ref[4] >= 1  # an impacting orbit
     assert abs(max_g - ref[5]) < 1e-6 * max(1.0, abs(ref[5]))
     diff = np.max(np.abs(orb_r[:q] - ref[3][:q]))
     # tight Rosenbrock too
-    (st_t, _, _, orb_t, _, _, _), _ = classify(pr, ro.advance, 1e-10, 1e-12, 1e-10)
+    (st_t, _, _, orb_t, _, _, _), _ = classify(pr, ro.STEPPER, 1e-10, 1e-12, 1e-10)
     diff_t = np.max(np.abs(orb_t[:q] - ref[3][:q]))
     print(f"\nk_c=1e6 c_c={c_c:g}: period {q}, orbit {orb_r[0]}, max penetration {max_g:.3e}")
     print(f"  rodas4 rtol 1e-8: {t_r * 1e3:.2f} ms, {n_r} periods, {cnt_r[layout.N_STEPS]} steps, "
@@ -382,15 +375,15 @@ def test_agrees_with_dopri5_on_a_soft_contact_case(impacting):
     """d = 1, k_c = 8, c_c = 10 from (2, 0, -2, 0): state at t = 20 T, contacts counted."""
     pr, _, _ = impacting
     T = pr.period
-    A, b, rel, contact = pr.kernel_args()
+    surfaces = pr.kernel_args()
     tight = pr.with_integrator(rtol=1e-12, atol=1e-14).options()
-    st_d, y_d, g_d, c_d = orbit.flow(dopri5.advance, pr.system.rhs, pr.params, Y0_PAIR.copy(),
-                                     0.0, 20 * T, A, b, rel, contact, tight)
+    st_d, y_d, g_d, c_d = orbit.flow(dopri5.STEPPER, pr.system.rhs, pr.params, Y0_PAIR.copy(),
+                                     0.0, 20 * T, surfaces, tight)
     assert st_d == OK
     for rtol, lim in ((1e-8, 1e-6), (1e-10, 1e-8)):
         opts = pr.with_integrator(rtol=rtol, atol=rtol * 1e-2).options()
-        st, y, g, c = orbit.flow(ro.advance, pr.system.rhs, pr.params, Y0_PAIR.copy(), 0.0,
-                                 20 * T, A, b, rel, contact, opts)
+        st, y, g, c = orbit.flow(ro.STEPPER, pr.system.rhs, pr.params, Y0_PAIR.copy(), 0.0,
+                                 20 * T, surfaces, opts)
         diff = np.max(np.abs(y - y_d))
         print(f"rodas4 rtol {rtol:g}: |y(20T) - dopri5| = {diff:.1e}, {c[layout.N_STEPS]} steps")
         assert st == OK and diff < lim, diff
@@ -404,14 +397,13 @@ def test_agrees_with_dopri5_on_a_soft_contact_case(impacting):
 def test_records_samples_and_sections_like_dopri5(impacting):
     pr, _, _ = impacting
     T = pr.period
-    A, b, rel, contact = pr.kernel_args()
     spp = 64
     cap = PERIODS * spp + 1
     out = {}
-    for name, advance, rtol in (("rodas4", ro.advance, 1e-10), ("dopri5", dopri5.advance, 1e-12)):
+    for name, method, rtol in (("rodas4", ro.STEPPER, 1e-10), ("dopri5", dopri5.STEPPER, 1e-12)):
         opts = pr.with_integrator(rtol=rtol, atol=rtol * 1e-2).options(T / spp, 0.0)
-        out[name] = orbit.record(advance, pr.system.rhs, pr.params, Y0_PAIR.copy(), 0.0, T,
-                                 PERIODS, A, b, rel, contact, opts, cap)
+        out[name] = orbit.record(method, pr.system.rhs, pr.params, Y0_PAIR.copy(), (0.0, T),
+                                 PERIODS, pr.kernel_args(), opts, cap)
     r, d = out["rodas4"], out["dopri5"]
     assert r[0] == OK and r[3] == cap
     np.testing.assert_allclose(r[1], d[1], rtol=0, atol=1e-12)  # sample times
