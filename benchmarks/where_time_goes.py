@@ -90,7 +90,7 @@ def rhs_floor(periods: int = 400, repeats: int = 5) -> str:
     T = problem.period
     y0 = np.array([1.0, 0.0, -1.0, 0.0])
     def integrate():
-        return orbit_kernels.flow(problem.stepper, problem.system.rhs, problem.params,
+        return orbit_kernels.flow(problem.advance, problem.system.rhs, problem.params,
                                   y0.copy(), 0.0, periods * T, problem.kernel_args(),
                                   problem.options())
 

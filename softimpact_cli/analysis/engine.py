@@ -72,9 +72,9 @@ class Problem:
         return opts
 
     @property
-    def stepper(self):
-        """The integration method as the kernels take it (``kernels.driver.Stepper``)."""
-        return METHODS[self.integrator.resolved_method].STEPPER
+    def advance(self):
+        """The integration method's kernel (see ``kernels.driver``)."""
+        return METHODS[self.integrator.resolved_method].advance
 
     def kernel_args(self):
         sf = self.surfaces
@@ -177,7 +177,7 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
     if recurrence is None:
         recurrence = _no_cells()
     out = orbit.classify_near(
-        problem.stepper, problem.system.rhs, problem.params, y0, (float(t0), problem.period),
+        problem.advance, problem.system.rhs, problem.params, y0, (float(t0), problem.period),
         problem.kernel_args(), problem.options(),
         (s.max_periods, s.max_orbit_period, s.convergence_tol),
         orbit.Known(known.points, known.periods, known.max_g, known.capture_tol,
@@ -196,7 +196,7 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
 def flow(problem: Problem, state, t0: float, t1: float) -> tuple[int, np.ndarray, float]:
     """(status, state at t1, max of the contact function on [t0, t1]) from ``state`` at t0."""
     y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
-    status, y, max_g, _ = orbit.flow(problem.stepper, problem.system.rhs, problem.params, y0,
+    status, y, max_g, _ = orbit.flow(problem.advance, problem.system.rhs, problem.params, y0,
                                      float(t0), float(t1), problem.kernel_args(),
                                      problem.options())
     return int(status), y, float(max_g)
@@ -232,7 +232,7 @@ def record_trajectory(problem: Problem, state, t0: float, periods: int,
     n0 = int(orbit.first_section(float(t0), T))
     t_end = (n0 + periods) * T
     capacity = int(np.floor((t_end - t0) / dt + 1e-9)) + 1
-    out = orbit.record(problem.stepper, problem.system.rhs, problem.params, y0, (float(t0), T),
+    out = orbit.record(problem.advance, problem.system.rhs, problem.params, y0, (float(t0), T),
                        int(periods), problem.kernel_args(), problem.options(dt, float(t0)),
                        capacity)
     n = out.n_samples

@@ -46,7 +46,7 @@ def _scene_kernels(model: str, bodies: int, method: str, catalogue: bool) -> lis
     from ..systems import get_system, variational
 
     system = get_system(model, bodies)
-    kernels = [orbit.classify_near, orbit.record, METHODS[method].STEPPER.step, system.rhs]
+    kernels = [orbit.classify_near, orbit.record, METHODS[method].advance, system.rhs]
     if catalogue:
         body = get_system(model, 1)
         kernels += [orbit.flow, body.rhs, variational.variational_rhs(body)]

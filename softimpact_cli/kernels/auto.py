@@ -32,7 +32,7 @@ from numba import njit
 
 from . import dopri5 as dp
 from . import rosenbrock as ro
-from .driver import Stepper, adaptive
+from .driver import adaptive_loop
 from .layout import (
     AUTO_CALM,
     AUTO_COOLDOWN,
@@ -194,43 +194,38 @@ def enter_mode(istate):
 
 
 # ---------------------------------------------------------------------------------------
-# the hooks for the driver (``driver.Stepper``): variant 0 takes dopri5's steps, 1 Rodas4's
+# the hooks for the driver (see ``driver``): variant 0 takes dopri5's steps, 1 Rodas4's
 
 
-@njit(cache=True)
-def stiff_now(istate):
-    return istate[AUTO_STIFF]
-
-
-@njit(cache=True)
-def begin(jac, rhs, p, t, y, mode, work, variant):
+@njit(cache=True, inline="always")
+def begin(rhs, p, t, y, mode, work, variant):
     if variant:
-        return ro.begin(None, rhs, p, t, y, mode, work, variant)
-    return dp.begin(None, rhs, p, t, y, mode, work, variant)
+        return ro.begin(rhs, p, t, y, mode, work, variant)
+    return dp.begin(rhs, p, t, y, mode, work, variant)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant):
     if variant:
         return ro.step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant)
     return dp.step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def error(y, h, work, opts, variant):
     if variant:
         return ro.error(y, h, work, opts, variant)
     return dp.error(y, h, work, opts, variant)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def controller(variant):
     if variant:
         return ro.controller(variant)
     return dp.controller(variant)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense(y, h, work, variant):
     if variant:
         ro.dense(y, h, work, variant)
@@ -238,30 +233,25 @@ def dense(y, h, work, variant):
         dp.dense(y, h, work, variant)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def refine(rhs, p, t, y, h, h_full, mode, surface, work, variant):
     if variant:
         return ro.refine_crossing(rhs, p, t, y, h, h_full, mode, surface, work, variant)
     return h, 0
 
 
-@njit(cache=True)
-def accepted(y, h, h_next, work, istate, variant):
-    """The stiffness tests, on the step just accepted (``y`` still its start)."""
+@njit(cache=True, inline="always")
+def accept(y, h, h_next, work, istate, variant):
+    """The stiffness tests on the step just accepted (before ``y`` moves on), then the
+    method's own acceptance."""
     if variant:
-        return stiff_says_explicit(h_next, work, istate)
+        change = stiff_says_explicit(h_next, work, istate)
+        return change, ro.accept(y, h, h_next, work, istate, variant)[1]
+    change = False
     if istate[AUTO_HITS] > 0 or istate[N_STEPS] % TEST_EVERY == 0:
-        return explicit_says_stiff(y, h, work, istate)
-    return False
+        change = explicit_says_stiff(y, h, work, istate)
+    return change, dp.accept(y, h, h_next, work, istate, variant)[1]
 
 
-@njit(cache=True)
-def finish(work, istate, variant):
-    if variant:
-        return ro.finish(work, istate, variant)
-    return dp.finish(work, istate, variant)
-
-
-STEPPER = Stepper(loop=adaptive, variant=stiff_now, begin=begin, step=step, error=error,
-                  controller=controller, dense=dense, refine=refine, accepted=accepted,
-                  finish=finish, change_method=switch_method, enter_mode=enter_mode, jac=None)
+advance = adaptive_loop("auto", begin, step, error, controller, dense, refine, accept,
+                        switch_method, enter_mode)

@@ -19,7 +19,7 @@ Controller = namedtuple(
     "Controller", ["order", "safety", "fac_min", "fac_max", "singular_fac", "calm_after_reject"])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def first_step(t, t_end, opts, fstate):
     """(the step floor, the first proposal): the step carried over from the last call, else
     1 % of the interval (at most the largest step)."""
@@ -30,7 +30,7 @@ def first_step(t, t_end, opts, fstate):
     return H_FLOOR * max(span, 1e-300), h
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def landing(h, t, t_end):
     """(the step to take, whether it lands on t_end): a step within 0.01 % of the end time
     is stretched or shortened onto it, so the section times are hit exactly."""
@@ -39,13 +39,13 @@ def landing(h, t, t_end):
     return h, False
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rejects(ok, err):
     """A step is refused when its linear algebra failed or its error is not below 1."""
     return not ok or not isfinite(err) or err > 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def reject_factor(ok, err, c):
     """Shrink factor after a refused step (``c`` a Controller)."""
     if not ok:
@@ -55,7 +55,7 @@ def reject_factor(ok, err, c):
     return max(c.fac_min, c.safety * err ** (-1.0 / c.order))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def accept_factor(err, c):
     """Growth factor after an accepted step."""
     if err == 0.0:
@@ -63,7 +63,7 @@ def accept_factor(err, c):
     return min(c.fac_max, max(c.fac_min, c.safety * err ** (-1.0 / c.order)))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def next_step(err, c, h_step, h, rejected, truncated):
     """The step proposed after an accepted step ``h_step`` (``h`` was proposed before it)."""
     h_next = h_step * accept_factor(err, c)

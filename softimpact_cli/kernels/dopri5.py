@@ -12,7 +12,7 @@ import numpy as np
 from numba import njit
 
 from .control import Controller
-from .driver import Stepper, adaptive, no_change, no_refinement, no_test, same_method, single
+from .driver import adaptive_loop, no_change, no_refinement, same_method
 from .layout import ATOL, K0, M0, RTOL, YNEW, YTMP
 from .switching import mode_of
 
@@ -53,7 +53,7 @@ FAC_MIN = 0.2
 FAC_MAX = 10.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def stages(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
     """Stages K1..K6 (rows 1..6; row 0 holds f(t, y)); solution into row YNEW.
 
@@ -73,7 +73,7 @@ def stages(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
         work[YNEW, i] = work[YTMP, i]  # stage 7's state is the 5th-order solution
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def error_norm(y, h, opts, work):
     dim = y.shape[0]
     acc = 0.0
@@ -87,7 +87,7 @@ def error_norm(y, h, opts, work):
     return sqrt(acc / dim)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense_coefficients(y, h, work):
     """Monomial coefficients of Hairer's continuous extension into rows M0..M0+4."""
     for i in range(y.shape[0]):
@@ -107,44 +107,44 @@ def dense_coefficients(y, h, work):
 
 
 # ---------------------------------------------------------------------------------------
-# the method's hooks for the driver (``driver.Stepper``)
+# the method's hooks for the driver (see ``driver``)
 
 
-@njit(cache=True)
-def begin(jac, rhs, p, t, y, mode, work, variant):
+@njit(cache=True, inline="always")
+def begin(rhs, p, t, y, mode, work, variant):
     rhs(t, y, p, mode, work[K0])
     return 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant):
     stages(rhs, p, t, y, h, mode, stage_A.shape[0] == 0, stage_A, stage_b, work)
     return True, STAGES - 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def error(y, h, work, opts, variant):
     return error_norm(y, h, opts, work)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def controller(variant):
     return Controller(ORDER, SAFETY, FAC_MIN, FAC_MAX, FAC_MIN, False)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense(y, h, work, variant):
     dense_coefficients(y, h, work)
 
 
-@njit(cache=True)
-def finish(work, istate, variant):
-    """First same as last: stage 7 is f at the new state."""
-    for i in range(work.shape[1]):
+@njit(cache=True, inline="always")
+def accept(y, h, h_next, work, istate, variant):
+    """The state moves on; first same as last: stage 7 is f at the new state."""
+    for i in range(y.shape[0]):
+        y[i] = work[YNEW, i]
         work[K0, i] = work[K0 + 6, i]
-    return False
+    return False, False
 
 
-STEPPER = Stepper(loop=adaptive, variant=single, begin=begin, step=step, error=error,
-                  controller=controller, dense=dense, refine=no_refinement, accepted=no_test,
-                  finish=finish, change_method=no_change, enter_mode=same_method, jac=None)
+advance = adaptive_loop("dopri5", begin, step, error, controller, dense, no_refinement, accept,
+                        no_change, same_method)

@@ -1,18 +1,25 @@
 """The integration loops every method shares: one adaptive, one on a fixed grid.
 
-A method is a ``Stepper``: a named tuple of jitted functions, built once in Python by its
-module (``STEPPER``) and passed to the kernels like any argument (numba specialises each
-loop on the tuple's types, so the calls are static and inlined like direct ones; built
-inside jitted code, the tuple would embed object addresses and defeat the disk cache).
-Every kernel integrates through ``advance(m, ...)``, which runs ``m.loop``:
+A method module holds its tableau and its *hooks*, small jitted functions, and builds its
+``advance`` from them with ``adaptive_loop`` or ``fixed_loop``:
 
-* ``loop``: ``adaptive`` or ``fixed`` below.
+    advance(rhs, p, y, t, t_end, surfaces, opts, state, samples) -> status
 
-* ``variant(istate)``: which of its steps the method takes now (``auto``: 0 explicit,
-  1 stiff; a single method: 0); every hook below receives it.
-* ``begin(jac, rhs, p, t, y, mode, work, variant)``: what a step needs at its start
-  (f, and for Rodas4 the Jacobian; ``jac`` is the stepper's Jacobian or None); returns
-  the right-hand side evaluations used.
+integrates ``y`` in place from ``t`` to exactly ``t_end`` (``surfaces``: the switching
+surfaces ``(A, b, relevance, contact)``; ``state``: ``(istate, fstate, work)`` from
+``orbit.new_state``; ``samples``: ``(sample_t, sample_y)``). The loops are closures over
+the hooks, so every hook call is a static call numba inlines, exactly as if the loop were
+written out in the method's module (a hook passed as a value would cost a call per step
+and, built into jitted code, defeat the disk cache). The mode is frozen over a step; when
+an accepted step's dense output shows a watched surface crossed (or grazed), the step is
+redone up to the crossing, the mode switches there and the method restarts (no stage is
+reused across a switch).
+
+Every hook receives ``variant = istate[VARIANT]``, which of its steps the method takes
+now (``auto``: 0 explicit, 1 stiff; a single method: always 0):
+
+* ``begin(rhs, p, t, y, mode, work, variant)``: what a step needs at its start (f, and
+  for Rodas4 the Jacobian); returns the right-hand side evaluations used.
 * ``step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant)``: one step into
   ``work[YNEW]``; returns (ok, evaluations), ok False when its linear algebra failed.
   ``stage_A``, ``stage_b`` are the surfaces each stage reads its mode from (the plain
@@ -23,23 +30,17 @@ Every kernel integrates through ``advance(m, ...)``, which runs ``m.loop``:
 * ``refine(rhs, p, t, y, h, h_full, mode, surface, work, variant)``: a located crossing
   made exact on the step itself; ``surface`` = (A row, b) of the crossed surface; returns
   (step length, evaluations). ``no_refinement`` when dense output suffices.
-* ``accepted(y, h, h_next, work, istate, variant)``: after an accepted step, before the
-  state moves on; True asks for a change of method (``auto``'s stiffness tests).
-* ``finish(work, istate, variant)``: bookkeeping once the state moved on (FSAL copies,
-  counters); True when the next step needs ``begin`` again.
+* ``accept(y, h, h_next, work, istate, variant)``: take the accepted step: the method's
+  tests on it (``auto``'s stiffness tests), ``y`` moves to ``work[YNEW]``, its own
+  bookkeeping (FSAL copies, counters); returns (whether to change the method, whether
+  the next step needs ``begin`` again).
 * ``change_method(istate, mode)``, ``enter_mode(istate)``: ``auto``'s method state (True
-  from ``enter_mode`` when the new mode changes the method).
-* ``jac``: the system's Jacobian function, or None.
+  from ``enter_mode`` when the new mode changes the method); ``no_change`` and
+  ``same_method`` for a single method.
 
-Every loop integrates ``y`` in place from ``t`` to exactly ``t_end`` (``surfaces``: the
-switching surfaces ``(A, b, relevance, contact)``; ``state``: ``(istate, fstate, work)``
-from ``orbit.new_state``; ``samples``: ``(sample_t, sample_y)``) and returns a status.
-The mode is frozen over a step; when an accepted step's dense output shows a watched
-surface crossed (or grazed), the step is redone up to the crossing, the mode switches
-there and the method restarts (no stage is reused across a switch).
+``name`` (the method's, a Python identifier) names the loops in numba's disk cache.
 """
 
-from collections import namedtuple
 from math import ceil
 
 import numpy as np
@@ -60,249 +61,240 @@ from .layout import (
     N_REJECTED,
     N_RHS,
     N_STEPS,
-    YNEW,
+    VARIANT,
     H,
 )
 from .switching import earliest_exit
-
-Stepper = namedtuple("Stepper", ["loop", "variant", "begin", "step", "error", "controller", "dense",
-                                 "refine", "accepted", "finish", "change_method", "enter_mode",
-                                 "jac"])
-
-
-@njit(cache=True)
-def advance(m, rhs, p, y, t, t_end, surfaces, opts, state, samples):
-    """Integrate ``y`` in place from ``t`` to exactly ``t_end`` with method ``m``; a status."""
-    return m.loop(m, rhs, p, y, t, t_end, surfaces, opts, state, samples)
-
 
 # ---------------------------------------------------------------------------------------
 # what single methods leave out
 
 
-@njit(cache=True)
-def single(istate):
-    return 0
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def no_refinement(rhs, p, t, y, h, h_full, mode, surface, work, variant):
     return h, 0
 
 
-@njit(cache=True)
-def no_test(y, h, h_next, work, istate, variant):
-    return False
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def no_change(istate, mode):
     pass
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def same_method(istate):
     return False
 
 
 # ---------------------------------------------------------------------------------------
-# pieces of the loops
+# pieces of the loops. Bundles are unpacked once per call of a loop: numba counts the
+# references of every array taken out of a tuple, and per step that costs as much as the
+# step's arithmetic, so what runs every step takes plain arrays.
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def stage_surfaces(A_s, b_s, locate):
-    """The surfaces stages read their mode from: none when switches are located."""
+    """The surfaces stages read their mode from: none when switches are located (new
+    empty arrays: a slice would be typed non-contiguous and slow every step down)."""
     if locate:
-        return A_s[:0], b_s[:0]
+        return np.empty((0, A_s.shape[1])), np.empty(0)
     return A_s, b_s
 
 
-@njit(cache=True)
-def cross(m, mask, y, surfaces, istate):
-    """Cross the surfaces in ``mask`` at ``y`` (``common.apply_switch``); the new mode may
-    change the method."""
-    A_s, b_s, relevance, contact = surfaces
-    apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
-    m.enter_mode(istate)
+def _jit_as(name):
+    """``njit(cache=True)`` for a closure of the method ``name``, under its own name: its
+    own file in numba's disk cache (``warmup.missing_kernels`` can tell which method is
+    compiled) and a stable identity (see ``numba_cache``), since its callers' cache keys
+    and its own index key pickle it."""
+    def decorate(function):
+        function.__name__ = function.__qualname__ = f"{function.__name__}_{name}"
+        dispatcher = njit(cache=True)(function)
+        dispatcher._set_uuid(f"softimpact:kernels.driver.{function.__name__}")
+        return dispatcher
+    return decorate
 
 
-@njit(cache=True)
-def redo_to_crossing(m, rhs, p, t, y, h, h_full, surfaces, mask, state):
-    """Redo the step up to the crossing (fraction found on the dense output), in the same
-    frozen mode, refined by the method if it can; returns the step length, or -1 when the
-    shorter step broke down (only on breakdown: it is shorter than an accepted one)."""
-    A_s, b_s, _, _ = surfaces
-    istate, _, work = state
-    variant, mode = m.variant(istate), istate[MODE]
-    ok, evals = m.step(rhs, p, t, y, h, mode, A_s[:0], b_s[:0], work, variant)
-    istate[N_RHS] += evals
-    if not ok:
-        return -1.0
-    m.dense(y, h, work, variant)
-    i = 0
-    while not (mask >> i) & 1:
-        i += 1
-    h, evals = m.refine(rhs, p, t, y, h, h_full, mode, (A_s[i], b_s[i]), work, variant)
-    istate[N_RHS] += evals
-    return h
+def crossing_pieces(name, step, dense, refine, enter_mode):
+    """(redo, cross, plain) of a method: redo a step up to a located crossing; cross
+    there; the plain scheme's update after a step."""
 
+    @_jit_as(name)
+    def redo(rhs, p, t, y, h, h_full, surfaces, mask, state, stage):
+        """Redo the step up to the crossing (fraction found on the dense output), in the
+        same frozen mode, refined by the method if it can; returns the step length (0: a
+        grazing restart, leaving right at the start, takes no step), or -1 when the
+        shorter step broke down (only on breakdown: it is shorter than an accepted one).
+        ``stage``: the loop's (empty) stage surfaces."""
+        A_s, b_s, _, _ = surfaces
+        istate, fstate, work = state
+        if h <= 0.0:
+            return h
+        variant, mode = istate[VARIANT], istate[MODE]
+        ok, evals = step(rhs, p, t, y, h, mode, stage[0], stage[1], work, variant)
+        istate[N_RHS] += evals
+        if not ok:
+            fstate[H] = h
+            return -1.0
+        dense(y, h, work, variant)
+        i = 0
+        while not (mask >> i) & 1:
+            i += 1
+        h, evals = refine(rhs, p, t, y, h, h_full, mode, (A_s[i], b_s[i]), work, variant)
+        istate[N_RHS] += evals
+        return h
 
-@njit(cache=True)
-def accept(m, y, t, h, h_next, surfaces, opts, state, samples, coef):
-    """Take the step [t, t + h]: contact maximum, samples, the state moves on.
+    @_jit_as(name)
+    def cross(mask, y, surfaces, istate):
+        """Cross the surfaces in ``mask`` at ``y`` (``common.apply_switch``); the new mode
+        may change the method."""
+        A_s, b_s, relevance, contact = surfaces
+        apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
+        enter_mode(istate)
 
-    Returns (whether the method asks to change, whether the next step needs ``begin``).
-    """
-    istate, fstate, work = state
-    variant = m.variant(istate)
-    if opts[LOCATE] != 0.0:
-        track_contact(work, surfaces[0], surfaces[1], surfaces[3], fstate, coef)
-    write_samples(work, t, h, opts, istate, samples[0], samples[1])
-    change = m.accepted(y, h, h_next, work, istate, variant)
-    for i in range(y.shape[0]):
-        y[i] = work[YNEW, i]
-    need_first = m.finish(work, istate, variant)
-    istate[N_STEPS] += 1
-    return change, need_first
+    @_jit_as(name)
+    def plain(y, mode, A_s, b_s, contact, fstate, istate):
+        """The plain scheme after a step: the mode is the state's; True when the new mode
+        changes the method."""
+        plain_mode_update(y, A_s, b_s, contact, istate)
+        track_contact_at(y, A_s, b_s, contact, fstate)
+        return istate[MODE] != mode and enter_mode(istate)
 
-
-@njit(cache=True)
-def plain_update(m, y, mode, surfaces, fstate, istate):
-    """Plain scheme: the mode is the state's; True when that changed the method."""
-    A_s, b_s, _, contact = surfaces
-    plain_mode_update(y, A_s, b_s, contact, istate)
-    track_contact_at(y, A_s, b_s, contact, fstate)
-    return istate[MODE] != mode and m.enter_mode(istate)
-
-
-@njit(cache=True)
-def try_step(m, rhs, p, t, y, h, stage, opts, istate, work):
-    """Attempt a step of size h; returns (ok, its error norm)."""
-    variant = m.variant(istate)
-    ok, evals = m.step(rhs, p, t, y, h, istate[MODE], stage[0], stage[1], work, variant)
-    istate[N_RHS] += evals
-    err = m.error(y, h, work, opts, variant) if ok else np.inf
-    return ok, err
+    return redo, cross, plain
 
 
 # ---------------------------------------------------------------------------------------
 # the adaptive loop
 
 
-@njit(cache=True)
-def adaptive(m, rhs, p, y, t, t_end, surfaces, opts, state, samples):
-    """Integrate ``y`` in place from ``t`` to exactly ``t_end`` with stepper ``m``."""
-    istate, fstate, work = state
-    locate = opts[LOCATE] != 0.0
-    stage = stage_surfaces(surfaces[0], surfaces[1], locate)
-    coef = np.empty(5)
-    h_floor, h = first_step(t, t_end, opts, fstate)
-    need_first, rejected, steps, switches = True, False, 0, 0
-    while t_end - t > 1e-14 * max(1.0, abs(t_end)):
-        mode = istate[MODE]
-        if need_first:
-            istate[N_RHS] += m.begin(m.jac, rhs, p, t, y, mode, work, m.variant(istate))
-            need_first = False
-        h = min(h, opts[H_MAX])
-        h_step, truncated = landing(h, t, t_end)
-        ok, err = try_step(m, rhs, p, t, y, h_step, stage, opts, istate, work)
-        c = m.controller(m.variant(istate))
-        if rejects(ok, err):
-            istate[N_REJECTED] += 1
-            rejected, h = True, h_step * reject_factor(ok, err, c)
-            if h < h_floor:
-                fstate[H] = h
-                return STEP_UNDERFLOW
-            continue
-        h_next, rejected = next_step(err, c, h_step, h, rejected, truncated), False
-        m.dense(y, h_step, work, m.variant(istate))
-        u, mask = -1.0, 0
-        if locate and surfaces[0].shape[0] > 0:
-            u, mask = earliest_exit(work, surfaces[0], surfaces[1], surfaces[2], mode, coef)
-        if mask != 0:  # redo the step up to the crossing; the controller's proposal stands
-            h_full, h_step, h_next, truncated = h_step, u * h_step, h, False
-            if h_step > 0.0:
-                h_step = redo_to_crossing(m, rhs, p, t, y, h_step, h_full, surfaces, mask, state)
-                if h_step < 0.0:
-                    fstate[H] = u * h_full
+def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, change_method,
+                  enter_mode):
+    """The ``advance`` of an adaptive method with these hooks (see the module's doc)."""
+    redo, cross, plain = crossing_pieces(name, step, dense, refine, enter_mode)
+
+    @_jit_as(name)
+    def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
+        """Integrate ``y`` in place from ``t`` to exactly ``t_end``; a status code."""
+        (A_s, b_s, relevance, contact), (istate, fstate, work), (sample_t, sample_y) = \
+            surfaces, state, samples
+        locate = opts[LOCATE] != 0.0
+        stage_A, stage_b = stage_surfaces(A_s, b_s, locate)
+        coef = np.empty(5)
+        h_floor, h = first_step(t, t_end, opts, fstate)
+        need_first, rejected, steps, switches = True, False, 0, 0
+        while t_end - t > 1e-14 * max(1.0, abs(t_end)):
+            mode, v = istate[MODE], istate[VARIANT]
+            if need_first:
+                istate[N_RHS] += begin(rhs, p, t, y, mode, work, v)
+                need_first = False
+            h = min(h, opts[H_MAX])
+            h_step, truncated = landing(h, t, t_end)
+            ok, evals = step(rhs, p, t, y, h_step, mode, stage_A, stage_b, work, v)
+            istate[N_RHS] += evals
+            err, c = error(y, h_step, work, opts, v) if ok else np.inf, controller(v)
+            if rejects(ok, err):
+                istate[N_REJECTED] += 1
+                rejected, h = True, h_step * reject_factor(ok, err, c)
+                if h < h_floor:
+                    fstate[H] = h
                     return STEP_UNDERFLOW
-        if h_step > 0.0:  # (a grazing restart, leaving right at the start, takes no step)
-            change, need_first = accept(m, y, t, h_step, h_next, surfaces, opts, state, samples,
-                                        coef)
-            t = t_end if truncated else t + h_step
-            steps += 1
-            if out_of_bounds(y, opts[BOUND]):
-                fstate[H] = h_next
-                return DIVERGED
-            if change:
-                m.change_method(istate, mode)
-                need_first = True
-            if not locate and surfaces[0].shape[0] > 0:
-                need_first = plain_update(m, y, mode, surfaces, fstate, istate) or need_first
-        if mask != 0:
-            cross(m, mask, y, surfaces, istate)
-            need_first, switches = True, switches + 1
-            if switches > opts[MAX_SWITCHES]:
-                return TOO_MANY_SWITCHES
-        h = h_next
-        if steps > opts[MAX_STEPS]:
-            fstate[H] = h
-            return STEP_BUDGET
-    fstate[H] = h
-    return OK
+                continue
+            h_next, rejected = next_step(err, c, h_step, h, rejected, truncated), False
+            dense(y, h_step, work, v)
+            u, mask = -1.0, 0
+            if locate and A_s.shape[0] > 0:
+                u, mask = earliest_exit(work, A_s, b_s, relevance, mode, coef)
+            if mask != 0:  # redo the step up to the crossing; the proposal stands
+                h_full, h_next, truncated = h_step, h, False
+                h_step = redo(rhs, p, t, y, u * h_step, h_full, surfaces, mask, state,
+                              (stage_A, stage_b))
+                if h_step < 0.0:
+                    return STEP_UNDERFLOW
+            if h_step > 0.0:  # (a grazing restart takes no step)
+                if locate:
+                    track_contact(work, A_s, b_s, contact, fstate, coef)
+                write_samples(work, t, h_step, opts, istate, sample_t, sample_y)
+                change, need_first = accept(y, h_step, h_next, work, istate, v)
+                istate[N_STEPS] += 1
+                t, steps = t_end if truncated else t + h_step, steps + 1
+                if out_of_bounds(y, opts[BOUND]):
+                    fstate[H] = h_next
+                    return DIVERGED
+                if change:
+                    change_method(istate, mode)
+                    need_first = True
+                if not locate and A_s.shape[0] > 0:  # plain scheme: the mode is the state's
+                    need_first = plain(y, mode, A_s, b_s, contact, fstate, istate) or need_first
+            if mask != 0:
+                cross(mask, y, surfaces, istate)
+                need_first, switches = True, switches + 1
+                if switches > opts[MAX_SWITCHES]:
+                    return TOO_MANY_SWITCHES
+            h = h_next
+            if steps > opts[MAX_STEPS]:
+                fstate[H] = h
+                return STEP_BUDGET
+        fstate[H] = h
+        return OK
+
+    return advance
 
 
 # ---------------------------------------------------------------------------------------
 # the fixed-step loop
 
 
-@njit(cache=True)
-def fixed(m, rhs, p, y, t, t_end, surfaces, opts, state, samples):
-    """Integrate ``y`` in place from ``t`` to exactly ``t_end`` on the grid ``t + k (t_end -
-    t) / n``, ``n`` the smallest count whose step does not exceed ``opts[H_FIXED]``; a
-    located switch inserts a step up to it and the grid goes on from there."""
-    istate, fstate, work = state
-    locate = opts[LOCATE] != 0.0
-    stage = stage_surfaces(surfaces[0], surfaces[1], locate)
-    coef = np.empty(5)
-    t_start = t
-    n = max(1, int(ceil((t_end - t_start) / opts[H_FIXED] - 1e-9)))
-    dt = (t_end - t_start) / n
-    k, need_first, switches = 1, True, 0
-    while k <= n:
-        target = t_end if k == n else t_start + k * dt
-        h = target - t
-        if h <= 1e-14 * max(1.0, abs(target)):
-            k += 1
-            continue
-        mode = istate[MODE]
-        if need_first:
-            istate[N_RHS] += m.begin(m.jac, rhs, p, t, y, mode, work, 0)
-            need_first = False
-        _, evals = m.step(rhs, p, t, y, h, mode, stage[0], stage[1], work, 0)
-        istate[N_RHS] += evals
-        m.dense(y, h, work, 0)
-        u, mask = -1.0, 0
-        if locate and surfaces[0].shape[0] > 0:
-            u, mask = earliest_exit(work, surfaces[0], surfaces[1], surfaces[2], mode, coef)
-        if mask != 0:
-            h_full, h = h, u * h
-            if h > 0.0:  # (a grazing restart, leaving right at the start, takes no step)
-                h = redo_to_crossing(m, rhs, p, t, y, h, h_full, surfaces, mask, state)
-                accept(m, y, t, h, h, surfaces, opts, state, samples, coef)
+def fixed_loop(name, begin, step, dense, accept):
+    """The ``advance`` of a fixed-step method with these hooks: steps on the grid ``t + k
+    (t_end - t) / n``, ``n`` the smallest count whose step does not exceed
+    ``opts[H_FIXED]``; a located switch inserts a step up to it and the grid goes on."""
+    redo, cross, plain = crossing_pieces(name, step, dense, no_refinement, same_method)
+
+    @_jit_as(name)
+    def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
+        """Integrate ``y`` in place from ``t`` to exactly ``t_end``; a status code."""
+        (A_s, b_s, relevance, contact), (istate, fstate, work), (sample_t, sample_y) = \
+            surfaces, state, samples
+        locate = opts[LOCATE] != 0.0
+        stage_A, stage_b = stage_surfaces(A_s, b_s, locate)
+        coef = np.empty(5)
+        n = max(1, int(ceil((t_end - t) / opts[H_FIXED] - 1e-9)))
+        t_start, dt = t, (t_end - t) / n
+        k, need_first, switches = 1, True, 0
+        while k <= n:
+            target = t_end if k == n else t_start + k * dt
+            h = target - t
+            if h <= 1e-14 * max(1.0, abs(target)):
+                k += 1
+                continue
+            mode = istate[MODE]
+            if need_first:
+                istate[N_RHS] += begin(rhs, p, t, y, mode, work, 0)
+                need_first = False
+            _, evals = step(rhs, p, t, y, h, mode, stage_A, stage_b, work, 0)
+            istate[N_RHS] += evals
+            dense(y, h, work, 0)
+            u, mask = -1.0, 0
+            if locate and A_s.shape[0] > 0:
+                u, mask = earliest_exit(work, A_s, b_s, relevance, mode, coef)
+            if mask != 0:
+                h = redo(rhs, p, t, y, u * h, h, surfaces, mask, state, (stage_A, stage_b))
+            if h > 0.0:  # (a grazing restart takes no step)
+                if locate:
+                    track_contact(work, A_s, b_s, contact, fstate, coef)
+                write_samples(work, t, h, opts, istate, sample_t, sample_y)
+                accept(y, h, h, work, istate, 0)
+                istate[N_STEPS] += 1
                 if out_of_bounds(y, opts[BOUND]):
                     return DIVERGED
+            if mask != 0:
                 t = t + h
-            cross(m, mask, y, surfaces, istate)
-            need_first, switches = True, switches + 1
-            if switches > opts[MAX_SWITCHES]:
-                return TOO_MANY_SWITCHES
-            continue
-        accept(m, y, t, h, h, surfaces, opts, state, samples, coef)
-        if out_of_bounds(y, opts[BOUND]):
-            return DIVERGED
-        t = target
-        k += 1
-        if not locate and surfaces[0].shape[0] > 0:
-            plain_update(m, y, mode, surfaces, fstate, istate)
-    return OK
+                cross(mask, y, surfaces, istate)
+                need_first, switches = True, switches + 1
+                if switches > opts[MAX_SWITCHES]:
+                    return TOO_MANY_SWITCHES
+                continue
+            t, k = target, k + 1
+            if not locate and A_s.shape[0] > 0:
+                plain(y, mode, A_s, b_s, contact, fstate, istate)
+        return OK
+
+    return advance

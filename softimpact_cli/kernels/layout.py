@@ -29,8 +29,9 @@ N_SAMPLES = 6
 N_STIFF_STEPS = 7  # accepted steps of the stiff method (rodas4, alone or inside auto)
 N_METHOD_SWITCHES = 8  # auto: changes between the explicit and the stiff method
 N_COUNTERS = 9  # istate[:N_COUNTERS] are what engine.COUNTER_NAMES names (mode, counters)
-# auto's running state (kernels/auto.py), carried across calls like the mode
-AUTO_STIFF = 9  # 1 while the stiff method runs
+# the stepper's running state, carried across calls like the mode
+VARIANT = 9  # which kind of step the method takes now (``driver.Stepper``; 0 for most)
+AUTO_STIFF = VARIANT  # auto (kernels/auto.py): 1 while the stiff method runs
 AUTO_STIFF_MODES = 10  # bit m set: a phase in mode m starts with the stiff method
 AUTO_HITS = 11  # Hairer's stiffness test: recent steps that looked stability bound
 AUTO_CALM = 12  # ... and steps in a row that did not

@@ -24,7 +24,6 @@ from numba import njit
 
 from .cells import NO_CELL, cell_key, new_cells
 from .codes import CONVERGED, MIXED_CELL, NO_ORBIT, OK, UNRESOLVED
-from .driver import advance
 from .layout import MATRICES, MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
 from .switching import mode_of
 
@@ -76,7 +75,7 @@ def no_samples(dim):
 
 
 @njit(cache=True)
-def one_period(method, rhs, p, y, t_start, period, surfaces, opts, state, samples):
+def one_period(advance, rhs, p, y, t_start, period, surfaces, opts, state, samples):
     """Advance one forcing period from t_start; (status, contact onsets, max of the contact
     function during it). A period that starts in contact is in contact."""
     istate, fstate, _ = state
@@ -85,7 +84,7 @@ def one_period(method, rhs, p, y, t_start, period, surfaces, opts, state, sample
     if contact >= 0 and (istate[MODE] >> contact) & 1:
         fstate[MAX_G] = 0.0
     c_before = istate[N_CONTACTS]
-    status = advance(method, rhs, p, y, t_start, t_start + period, surfaces, opts, state, samples)
+    status = advance(rhs, p, y, t_start, t_start + period, surfaces, opts, state, samples)
     return status, istate[N_CONTACTS] - c_before, fstate[MAX_G]
 
 
@@ -218,14 +217,14 @@ def no_cells():
 
 
 @njit(cache=True)
-def classify(method, rhs, p, y0, section, surfaces, opts, limits):
+def classify(advance, rhs, p, y0, section, surfaces, opts, limits):
     """``classify_near`` with no known orbits and no cells: stop when the points repeat."""
-    return classify_near(method, rhs, p, y0, section, surfaces, opts, limits,
+    return classify_near(advance, rhs, p, y0, section, surfaces, opts, limits,
                          no_known(y0.shape[0]), no_cells())
 
 
 @njit(cache=True)
-def classify_near(method, rhs, p, y0, section, surfaces, opts, limits, known, cells):
+def classify_near(advance, rhs, p, y0, section, surfaces, opts, limits, known, cells):
     """Integrate from (t0, y0) until the section points repeat, or follow a known orbit,
     or the budget ends, or it fails; returns a ``Classified``.
 
@@ -253,7 +252,7 @@ def classify_near(method, rhs, p, y0, section, surfaces, opts, limits, known, ce
     orbit = np.zeros((max(max_orbit_period, known.points.shape[1]), dim))
     n0 = first_section(t0, period)
     if n0 * period > t0:
-        status = advance(method, rhs, p, y, t0, n0 * period, surfaces, opts, state, samples)
+        status = advance(rhs, p, y, t0, n0 * period, surfaces, opts, state, samples)
         if status != OK:
             return Classified(status, 0, 0, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
     hist[0] = y
@@ -264,7 +263,7 @@ def classify_near(method, rhs, p, y0, section, surfaces, opts, limits, known, ce
     run, run_code, streak, last_k, last_j = 0, MIXED_CELL, 0, -1, -1
     for n in range(1, max_periods + 1):
         k = n % depth
-        status, contacts[k], max_g[k] = one_period(method, rhs, p, y, (n0 + n - 1) * period,
+        status, contacts[k], max_g[k] = one_period(advance, rhs, p, y, (n0 + n - 1) * period,
                                                    period, surfaces, opts, state, samples)
         if status != OK:
             return Classified(status, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
@@ -288,7 +287,7 @@ def classify_near(method, rhs, p, y0, section, surfaces, opts, limits, known, ce
 
 
 @njit(cache=True)
-def record(method, rhs, p, y0, section, n_periods, surfaces, opts, n_samples):
+def record(advance, rhs, p, y0, section, n_periods, surfaces, opts, n_samples):
     """Integrate n_periods forcing periods from section = (t0, T), writing dense samples;
     returns a ``Recorded``.
 
@@ -308,7 +307,7 @@ def record(method, rhs, p, y0, section, n_periods, surfaces, opts, n_samples):
     n0 = first_section(t0, period)
     status = OK
     if n0 * period > t0:
-        status = advance(method, rhs, p, y, t0, n0 * period, surfaces, opts, state, samples)
+        status = advance(rhs, p, y, t0, n0 * period, surfaces, opts, state, samples)
     if status == OK:
         section_t[0] = n0 * period
         section_y[0] = y
@@ -316,7 +315,7 @@ def record(method, rhs, p, y0, section, n_periods, surfaces, opts, n_samples):
         max_g[0] = fstate[MAX_G]
         for n in range(1, n_periods + 1):
             t_start = (n0 + n - 1) * period
-            status, c, g = one_period(method, rhs, p, y, t_start, period, surfaces, opts,
+            status, c, g = one_period(advance, rhs, p, y, t_start, period, surfaces, opts,
                                       state, samples)
             if status != OK:
                 break
@@ -329,11 +328,11 @@ def record(method, rhs, p, y0, section, n_periods, surfaces, opts, n_samples):
 
 
 @njit(cache=True)
-def flow(method, rhs, p, y0, t0, t1, surfaces, opts):
+def flow(advance, rhs, p, y0, t0, t1, surfaces, opts):
     """State at t1 of the trajectory through (t0, y0). Returns (status, y, max_g, counters)."""
     y = y0.copy()
     state = new_state(y, surfaces[0], surfaces[1])
     status = OK
     if t1 > t0:
-        status = advance(method, rhs, p, y, t0, t1, surfaces, opts, state, no_samples(y.shape[0]))
+        status = advance(rhs, p, y, t0, t1, surfaces, opts, state, no_samples(y.shape[0]))
     return status, y, state[1][MAX_G], state[0]

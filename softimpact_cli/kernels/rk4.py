@@ -11,9 +11,8 @@ integration restarts there before continuing to the next grid point. With
 import numpy as np
 from numba import njit
 
-from .control import Controller
 from .dense import hermite_coefficients
-from .driver import Stepper, fixed, no_change, no_refinement, no_test, same_method, single
+from .driver import fixed_loop
 from .layout import K0, YNEW, YTMP
 from .switching import mode_of
 
@@ -24,7 +23,7 @@ A = np.array([[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 1.0]
 B = np.array([1 / 6, 1 / 3, 1 / 3, 1 / 6])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rk4_step(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
     """One RK4 step from (t, y) with row K0 = f(t, y); result in YNEW, f(t+h, y_new) in K0+4."""
     dim = y.shape[0]
@@ -43,45 +42,33 @@ def rk4_step(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
 
 
 # ---------------------------------------------------------------------------------------
-# the method's hooks for the driver (``driver.Stepper``)
+# the method's hooks for the driver (see ``driver``)
 
 
-@njit(cache=True)
-def begin(jac, rhs, p, t, y, mode, work, variant):
+@njit(cache=True, inline="always")
+def begin(rhs, p, t, y, mode, work, variant):
     rhs(t, y, p, mode, work[K0])
     return 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant):
     rk4_step(rhs, p, t, y, h, mode, stage_A.shape[0] == 0, stage_A, stage_b, work)
     return True, STAGES
 
 
-@njit(cache=True)
-def no_error(y, h, work, opts, variant):
-    return 0.0
-
-
-@njit(cache=True)
-def no_controller(variant):
-    return Controller(ORDER, 1.0, 1.0, 1.0, 1.0, False)
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense(y, h, work, variant):
     hermite_coefficients(work, y, work[YNEW], work[K0], work[K0 + 4], h)
 
 
-@njit(cache=True)
-def finish(work, istate, variant):
-    """f at the new state was the step's last evaluation."""
-    for i in range(work.shape[1]):
+@njit(cache=True, inline="always")
+def accept(y, h, h_next, work, istate, variant):
+    """The state moves on; f at the new state was the step's last evaluation."""
+    for i in range(y.shape[0]):
+        y[i] = work[YNEW, i]
         work[K0, i] = work[K0 + 4, i]
-    return False
+    return False, False
 
 
-STEPPER = Stepper(loop=fixed, variant=single, begin=begin, step=step, error=no_error,
-                  controller=no_controller, dense=dense, refine=no_refinement,
-                  accepted=no_test, finish=finish, change_method=no_change,
-                  enter_mode=same_method, jac=None)
+advance = fixed_loop("rk4", begin, step, dense, accept)

@@ -23,25 +23,26 @@ without it the crossing's time error shows up as erratic ~3rd-order global error
 every contact of the paper law (whose force jumps at onset). Steps land exactly on
 ``t_end``.
 
-Two entry points share the adaptive loop of ``driver``:
+Two entry points, built by the adaptive loop of ``driver``:
 
-* ``advance_with_jacobian(rhs, jac, p, y, ...)``: the system's analytic
-  ``jac(t, y, p, mode, jac, dfdt)``;
 * ``advance(rhs, p, y, ...)``: the standard signature of every method, so the trajectory
   kernels take it unchanged; the Jacobian and ``f_t`` are differences of ``rhs`` in the
-  frozen mode (``linalg.fd_jacobian``).
+  frozen mode (``linalg.fd_jacobian``);
+* ``with_jacobian(jac)(rhs, p, y, ...)``: the system's analytic ``jac(t, y, p, mode,
+  jac, dfdt)``.
 
 Every array lives in rows of the driver's ``work`` array (``layout``: F0, DFDT, YT, FT,
 U0.., PIV, JAC..).
 """
 
+from functools import cache
 from math import sqrt
 
 import numpy as np
 from numba import njit
 
 from .control import Controller
-from .driver import Stepper, adaptive, no_change, no_test, same_method, single
+from .driver import adaptive_loop, no_change, same_method
 from .layout import ATOL, DFDT, F0, FT, JAC, M0, N_STIFF_STEPS, PIV, RTOL, U0, YNEW, YT
 from .linalg import fd_jacobian, lu_factor, lu_solve
 from .switching import mode_of, poly_rate
@@ -100,7 +101,7 @@ EPS = 2.220446049250313e-16
 # one step
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rodas_step(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
     """One Rodas4 step of size h from (t, y) with f, J and f_t at (t, y) in rows F0, JAC,
     DFDT of ``work``.
@@ -145,7 +146,7 @@ def rodas_step(rhs, p, t, y, h, mode, locate, A_s, b_s, work):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def error_norm(y, work, opts):
     dim = y.shape[0]
     acc = 0.0
@@ -156,7 +157,7 @@ def error_norm(y, work, opts):
     return sqrt(acc / dim)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense_coefficients(y, work):
     """Monomial rows M0..M0+4 of (1-s) y0 + s (y1 + (1-s) (k1 + s k2))."""
     for i in range(y.shape[0]):
@@ -227,56 +228,65 @@ def refine_crossing(rhs, p, t, y, h_step, h_full, mode, surface, work, variant):
 
 
 # ---------------------------------------------------------------------------------------
-# the method's hooks for the driver (``driver.Stepper``)
+# the method's hooks for the driver (see ``driver``)
 
 
-@njit(cache=True)
-def begin(jac, rhs, p, t, y, mode, work, variant):
-    """f, J and f_t at (t, y): the system's Jacobian, or differences when ``jac`` is None
-    (numba compiles one specialisation for each, the other branch pruned)."""
+@njit(cache=True, inline="always")
+def begin(rhs, p, t, y, mode, work, variant):
+    """f, J and f_t at (t, y), the derivatives by differences of ``rhs``."""
     dim = y.shape[0]
     rhs(t, y, p, mode, work[F0])
-    if jac is None:
-        return 1 + fd_jacobian(rhs, p, t, y, mode, work[F0], work[JAC:JAC + dim], work[DFDT],
-                               work[YT], work[FT])
-    jac(t, y, p, mode, work[JAC:JAC + dim], work[DFDT])
-    return 1
+    return 1 + fd_jacobian(rhs, p, t, y, mode, work[F0], work[JAC:JAC + dim], work[DFDT],
+                           work[YT], work[FT])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def step(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant):
     ok = rodas_step(rhs, p, t, y, h, mode, stage_A.shape[0] == 0, stage_A, stage_b, work)
     return ok, STAGES - 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def error(y, h, work, opts, variant):
     return error_norm(y, work, opts)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def controller(variant):
     return Controller(ORDER, SAFETY, FAC_MIN, FAC_MAX, 0.5, True)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense(y, h, work, variant):
     dense_coefficients(y, work)
 
 
-@njit(cache=True)
-def finish(work, istate, variant):
-    """Rodas4 is not FSAL: f, J and f_t are needed at the new point."""
+@njit(cache=True, inline="always")
+def accept(y, h, h_next, work, istate, variant):
+    """The state moves on; Rodas4 is not FSAL: f, J and f_t are needed at the new point."""
+    for i in range(y.shape[0]):
+        y[i] = work[YNEW, i]
     istate[N_STIFF_STEPS] += 1
-    return True
+    return False, True
 
 
-STEPPER = Stepper(loop=adaptive, variant=single, begin=begin, step=step, error=error,
-                  controller=controller, dense=dense, refine=refine_crossing, accepted=no_test,
-                  finish=finish, change_method=no_change, enter_mode=same_method, jac=None)
+advance = adaptive_loop("rodas4", begin, step, error, controller, dense, refine_crossing, accept,
+                        no_change, same_method)
 
 
+@cache
 def with_jacobian(jac):
-    """Rodas4 with the system's analytic ``jac(t, y, p, mode, jac, dfdt)`` (a jitted
-    function) instead of differences of the right-hand side."""
-    return STEPPER._replace(jac=jac)
+    """Rodas4's ``advance`` with the system's analytic ``jac(t, y, p, mode, jac, dfdt)``
+    (a jitted function) instead of differences of the right-hand side."""
+
+    @njit(cache=True)
+    def begin_with_jacobian(rhs, p, t, y, mode, work, variant):
+        dim = y.shape[0]
+        rhs(t, y, p, mode, work[F0])
+        jac(t, y, p, mode, work[JAC:JAC + dim], work[DFDT])
+        return 1
+
+    name = f"rodas4_{jac.py_func.__module__}_{jac.__name__}".replace(".", "_")
+    return adaptive_loop(name, begin_with_jacobian,
+                         step, error, controller, dense, refine_crossing, accept, no_change,
+                         same_method)

@@ -78,6 +78,6 @@ def test_missing_kernels_are_named_by_module(tmp_path):
             "print(' '.join(warmup.missing_kernels('bilinear', 2, 'rodas4')))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env=env, check=True).stdout.split()
-    assert "softimpact_cli.kernels.rosenbrock.step" in out
+    assert "softimpact_cli.kernels.driver.advance_rodas4" in out
     assert "softimpact_cli.systems.bilinear.pair_rhs" in out
     assert "softimpact_cli.systems.variational.bilinear_body_rhs" in out

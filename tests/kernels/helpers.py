@@ -8,7 +8,7 @@ import inspect
 import numpy as np
 
 from softimpact_cli.analysis.engine import Problem
-from softimpact_cli.kernels import driver, layout
+from softimpact_cli.kernels import layout
 from softimpact_cli.kernels.orbit import new_state, no_samples
 from softimpact_cli.systems import get_system
 
@@ -24,15 +24,14 @@ def problem(model: str, bodies: int, values: dict, **integrator) -> Problem:
 
 
 def run_advance(pr: Problem, y0, t0: float, t1: float, opts: np.ndarray | None = None):
-    """Call the kernels' ``driver.advance`` with the problem's method once over [t0, t1];
-    (status, y, istate, fstate)."""
+    """Call the problem's kernel ``advance`` once over [t0, t1]; (status, y, istate, fstate)."""
     y = np.array(y0, dtype=np.float64)
     surfaces = pr.kernel_args()
     istate, fstate, work = new_state(y, surfaces[0], surfaces[1])
     if opts is None:
         opts = pr.options()
-    status = driver.advance(pr.stepper, pr.system.rhs, pr.params, y, float(t0), float(t1),
-                            surfaces, opts, (istate, fstate, work), no_samples(y.size))
+    status = pr.advance(pr.system.rhs, pr.params, y, float(t0), float(t1), surfaces, opts,
+                        (istate, fstate, work), no_samples(y.size))
     return int(status), y, istate, fstate
 
 

@@ -14,7 +14,7 @@ import pytest
 from numba import njit
 
 from softimpact_cli.analysis.engine import COUNTER_NAMES, classify_state, record_trajectory
-from softimpact_cli.kernels import auto, dopri5, driver, layout, orbit
+from softimpact_cli.kernels import auto, dopri5, layout, orbit
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.systems import get_system
 
@@ -158,7 +158,7 @@ def test_flags_follow_the_modes():
     opts = pr.options()
     for n in range(4):
         before = istate.copy()
-        status = driver.advance(auto.STEPPER, pr.system.rhs, pr.params, y, n * pr.period,
+        status = auto.advance(pr.system.rhs, pr.params, y, n * pr.period,
                                 (n + 1) * pr.period, surfaces, opts, state,
                                 orbit.no_samples(4))
         step = istate - before
@@ -191,7 +191,7 @@ def test_a_phase_that_is_not_stiff_returns_to_dopri5():
     istate = state[0]
     istate[layout.AUTO_STIFF] = 1
     istate[layout.AUTO_STIFF_MODES] = 0b1
-    status = driver.advance(auto.STEPPER, pr.system.rhs, pr.params, y, 0.0, 3 * pr.period,
+    status = auto.advance(pr.system.rhs, pr.params, y, 0.0, 3 * pr.period,
                             surfaces, pr.options(), state, orbit.no_samples(4))
     assert status == OK
     assert auto.BACK_STEPS <= istate[layout.N_STIFF_STEPS] <= auto.BACK_STEPS + 2

@@ -1,4 +1,4 @@
-"""The integration loops (kernels/driver.py): a method is a Stepper of hooks.
+"""The integration loops (kernels/driver.py): a method is a set of hooks.
 
 The method here, Bogacki-Shampine 3(2) with a cubic Hermite dense output, is written in
 this file only, as a user would add one: it runs through the package's adaptive loop,
@@ -28,7 +28,7 @@ E = np.array([2 / 9 - 7 / 24, 1 / 3 - 1 / 4, 4 / 9 - 1 / 3, -1 / 8])  # B - B_ha
 
 
 @njit(cache=True)
-def bs3_begin(jac, rhs, p, t, y, mode, work, variant):
+def bs3_begin(rhs, p, t, y, mode, work, variant):
     rhs(t, y, p, mode, work[K0])
     return 1
 
@@ -72,10 +72,11 @@ def bs3_dense(y, h, work, variant):
 
 
 @njit(cache=True)
-def bs3_finish(work, istate, variant):
-    for i in range(work.shape[1]):
-        work[K0, i] = work[K0 + 3, i]
-    return False
+def bs3_accept(y, h, h_next, work, istate, variant):
+    for i in range(y.shape[0]):
+        y[i] = work[YNEW, i]
+        work[K0, i] = work[K0 + 3, i]  # first same as last
+    return False, False
 
 
 @njit(cache=True)
@@ -84,22 +85,27 @@ def always_singular(rhs, p, t, y, h, mode, stage_A, stage_b, work, variant):
 
 
 stable_identity(repr((C, A, E)), bs3_begin, bs3_step, bs3_error, bs3_controller, bs3_dense,
-                bs3_finish, always_singular)
+                bs3_accept, always_singular)
 
-BS3 = driver.Stepper(loop=driver.adaptive, variant=driver.single, begin=bs3_begin,
-                     step=bs3_step, error=bs3_error, controller=bs3_controller, dense=bs3_dense,
-                     refine=driver.no_refinement, accepted=driver.no_test, finish=bs3_finish,
-                     change_method=driver.no_change, enter_mode=driver.same_method, jac=None)
+
+def bs3_loop(name, step):
+    return driver.adaptive_loop(f"tests_{name}", bs3_begin, step, bs3_error, bs3_controller,
+                                bs3_dense, driver.no_refinement, bs3_accept, driver.no_change,
+                                driver.same_method)
+
+
+BS3 = bs3_loop("bs3", bs3_step)
+FAILING = bs3_loop("bs3_failing", always_singular)
 
 LINEAR = dict(c=0.05, k1=1.0, k2=0.0, F=1.0, w=1.3)
 
 
-def integrate(method, pr, y0, t1, opts):
+def integrate(advance, pr, y0, t1, opts):
     y = np.array(y0, dtype=float)
     surfaces = pr.kernel_args()
     state = orbit.new_state(y, surfaces[0], surfaces[1])
-    status = driver.advance(method, pr.system.rhs, pr.params, y, 0.0, t1, surfaces, opts,
-                            state, orbit.no_samples(y.size))
+    status = advance(pr.system.rhs, pr.params, y, 0.0, t1, surfaces, opts, state,
+                     orbit.no_samples(y.size))
     return int(status), y, state[0]
 
 
@@ -144,7 +150,7 @@ def test_it_locates_contacts_like_dopri5():
     t1 = 10 * pr.period
     status, y, istate = integrate(BS3, pr, y0, t1, pr.options())
     tight = pr.with_integrator(rtol=1e-12, atol=1e-14)
-    status_d, y_d, istate_d = integrate(dopri5.STEPPER, tight, y0, t1, tight.options())
+    status_d, y_d, istate_d = integrate(dopri5.advance, tight, y0, t1, tight.options())
     assert status == status_d == OK
     assert istate[layout.N_CONTACTS] == istate_d[layout.N_CONTACTS] >= 5
     assert np.max(np.abs(y - y_d)) < 1e-6
@@ -154,9 +160,8 @@ def test_a_step_that_breaks_down_halves_until_the_floor():
     """A step whose linear algebra fails is refused and halved (the singular factor); the
     loop ends with STEP_UNDERFLOW once the step is below 1e-13 of the interval."""
     pr = problem("duffing", 1, LINEAR)
-    failing = BS3._replace(step=always_singular)
     opts = pr.options()
-    status, _, istate = integrate(failing, pr, [1.0, 0.0], pr.period, opts)
+    status, _, istate = integrate(FAILING, pr, [1.0, 0.0], pr.period, opts)
     assert status == STEP_UNDERFLOW
     h0 = min(opts[layout.H_MAX], 0.01 * pr.period)
     expected = int(np.ceil(np.log2(h0 / (1e-13 * pr.period))))

@@ -20,7 +20,7 @@ import pytest
 from numba import njit
 from scipy.integrate import solve_ivp
 
-from softimpact_cli.kernels import dense, dopri5, driver, layout, linalg, orbit
+from softimpact_cli.kernels import dense, dopri5, layout, linalg, orbit
 from softimpact_cli.kernels import rosenbrock as ro
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.kernels.orbit import new_state
@@ -252,9 +252,9 @@ def run(pr, y0, t0, t1, opts=None, analytic=False):
     surfaces = pr.kernel_args()
     istate, fstate, work = new_state(y, surfaces[0], surfaces[1])
     opts = pr.options() if opts is None else opts
-    method = ro.with_jacobian(pr.system.jacobian) if analytic else ro.STEPPER
-    status = driver.advance(method, pr.system.rhs, pr.params, y, t0, t1, surfaces, opts,
-                            (istate, fstate, work), (np.empty(0), np.empty((0, y.size))))
+    advance = ro.with_jacobian(pr.system.jacobian) if analytic else ro.advance
+    status = advance(pr.system.rhs, pr.params, y, t0, t1, surfaces, opts, (istate, fstate, work),
+                     (np.empty(0), np.empty((0, y.size))))
     return int(status), y, istate, fstate
 
 
@@ -330,7 +330,7 @@ def classify(pr, method, rtol, atol, tol, max_periods=3000):
 
 
 def warm_up(pr):
-    for method in (ro.STEPPER, dopri5.STEPPER):
+    for method in (ro.advance, dopri5.advance):
         classify(pr, method, 1e-6, 1e-8, 1e-6, max_periods=1)
 
 
@@ -342,19 +342,19 @@ def test_stiff_stop_converges_and_agrees_with_a_tight_reference(c_c):
     Reference: dopri5 at rtol 1e-12, atol 1e-14, convergence tol 1e-10."""
     pr = problem("duffing", 2, dict(STIFF, c_c=c_c))
     warm_up(pr)
-    ref, t_ref = classify(pr, dopri5.STEPPER, 1e-12, 1e-14, 1e-10)
+    ref, t_ref = classify(pr, dopri5.advance, 1e-12, 1e-14, 1e-10)
     assert ref[0] == CONVERGED
     q = ref[1]
     # production settings: rtol 1e-8, atol 1e-10, convergence tol 1e-6
-    (st, q_r, n_r, orb_r, contacts, max_g, cnt_r), t_r = classify(pr, ro.STEPPER, 1e-8, 1e-10,
+    (st, q_r, n_r, orb_r, contacts, max_g, cnt_r), t_r = classify(pr, ro.advance, 1e-8, 1e-10,
                                                                    1e-6)
-    (st_d, q_d, n_d, orb_d, _, _, cnt_d), t_d = classify(pr, dopri5.STEPPER, 1e-8, 1e-10, 1e-6)
+    (st_d, q_d, n_d, orb_d, _, _, cnt_d), t_d = classify(pr, dopri5.advance, 1e-8, 1e-10, 1e-6)
     assert st == CONVERGED and st_d == CONVERGED and q_r == q_d == q
     assert max_g > 0.0 and contacts == ref[4] >= 1  # an impacting orbit
     assert abs(max_g - ref[5]) < 1e-6 * max(1.0, abs(ref[5]))
     diff = np.max(np.abs(orb_r[:q] - ref[3][:q]))
     # tight Rosenbrock too
-    (st_t, _, _, orb_t, _, _, _), _ = classify(pr, ro.STEPPER, 1e-10, 1e-12, 1e-10)
+    (st_t, _, _, orb_t, _, _, _), _ = classify(pr, ro.advance, 1e-10, 1e-12, 1e-10)
     diff_t = np.max(np.abs(orb_t[:q] - ref[3][:q]))
     print(f"\nk_c=1e6 c_c={c_c:g}: period {q}, orbit {orb_r[0]}, max penetration {max_g:.3e}")
     print(f"  rodas4 rtol 1e-8: {t_r * 1e3:.2f} ms, {n_r} periods, {cnt_r[layout.N_STEPS]} steps, "
@@ -377,12 +377,12 @@ def test_agrees_with_dopri5_on_a_soft_contact_case(impacting):
     T = pr.period
     surfaces = pr.kernel_args()
     tight = pr.with_integrator(rtol=1e-12, atol=1e-14).options()
-    st_d, y_d, g_d, c_d = orbit.flow(dopri5.STEPPER, pr.system.rhs, pr.params, Y0_PAIR.copy(),
+    st_d, y_d, g_d, c_d = orbit.flow(dopri5.advance, pr.system.rhs, pr.params, Y0_PAIR.copy(),
                                      0.0, 20 * T, surfaces, tight)
     assert st_d == OK
     for rtol, lim in ((1e-8, 1e-6), (1e-10, 1e-8)):
         opts = pr.with_integrator(rtol=rtol, atol=rtol * 1e-2).options()
-        st, y, g, c = orbit.flow(ro.STEPPER, pr.system.rhs, pr.params, Y0_PAIR.copy(), 0.0,
+        st, y, g, c = orbit.flow(ro.advance, pr.system.rhs, pr.params, Y0_PAIR.copy(), 0.0,
                                  20 * T, surfaces, opts)
         diff = np.max(np.abs(y - y_d))
         print(f"rodas4 rtol {rtol:g}: |y(20T) - dopri5| = {diff:.1e}, {c[layout.N_STEPS]} steps")
@@ -400,7 +400,7 @@ def test_records_samples_and_sections_like_dopri5(impacting):
     spp = 64
     cap = PERIODS * spp + 1
     out = {}
-    for name, method, rtol in (("rodas4", ro.STEPPER, 1e-10), ("dopri5", dopri5.STEPPER, 1e-12)):
+    for name, method, rtol in (("rodas4", ro.advance, 1e-10), ("dopri5", dopri5.advance, 1e-12)):
         opts = pr.with_integrator(rtol=rtol, atol=rtol * 1e-2).options(T / spp, 0.0)
         out[name] = orbit.record(method, pr.system.rhs, pr.params, Y0_PAIR.copy(), (0.0, T),
                                  PERIODS, pr.kernel_args(), opts, cap)
