@@ -166,7 +166,8 @@ def stiff_says_explicit(h_next, work, istate):
 
 @njit(cache=True)
 def switch_method(istate, mode):
-    """Flip the method within a phase in ``mode``; the mode's flag follows."""
+    """Flip the method within a phase in ``mode``; the mode's flag follows. True: the
+    next step begins afresh."""
     if istate[AUTO_STIFF] != 0:
         istate[AUTO_STIFF] = 0
         istate[AUTO_STIFF_MODES] &= ~(1 << mode)
@@ -177,6 +178,7 @@ def switch_method(istate, mode):
     istate[AUTO_HITS] = 0
     istate[AUTO_CALM] = 0
     istate[N_METHOD_SWITCHES] += 1
+    return True  # the new method begins afresh
 
 
 @njit(cache=True)

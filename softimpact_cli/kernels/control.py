@@ -31,12 +31,14 @@ def first_step(t, t_end, opts, fstate):
 
 
 @njit(cache=True, inline="always")
-def landing(h, t, t_end):
-    """(the step to take, whether it lands on t_end): a step within 0.01 % of the end time
-    is stretched or shortened onto it, so the section times are hit exactly."""
+def landing(h, h_max, t, t_end):
+    """(the proposal capped at h_max, the step to take, whether it lands on t_end): a
+    step within 0.01 % of the end time is stretched or shortened onto it, so the section
+    times are hit exactly."""
+    h = min(h, h_max)
     if t + 1.0001 * h >= t_end:
-        return t_end - t, True
-    return h, False
+        return h, t_end - t, True
+    return h, h, False
 
 
 @njit(cache=True, inline="always")

@@ -34,9 +34,9 @@ now (``auto``: 0 explicit, 1 stiff; a single method: always 0):
   tests on it (``auto``'s stiffness tests), ``y`` moves to ``work[YNEW]``, its own
   bookkeeping (FSAL copies, counters); returns (whether to change the method, whether
   the next step needs ``begin`` again).
-* ``change_method(istate, mode)``, ``enter_mode(istate)``: ``auto``'s method state (True
-  from ``enter_mode`` when the new mode changes the method); ``no_change`` and
-  ``same_method`` for a single method.
+* ``change_method(istate, mode)``, ``enter_mode(istate)``: ``auto``'s method state
+  (``change_method`` returns True: begin again; ``enter_mode`` True when the new mode
+  changes the method); ``no_change`` and ``same_method`` for a single method.
 
 ``name`` (the method's, a Python identifier) names the loops in numba's disk cache.
 """
@@ -77,7 +77,7 @@ def no_refinement(rhs, p, t, y, h, h_full, mode, surface, work, variant):
 
 @njit(cache=True, inline="always")
 def no_change(istate, mode):
-    pass
+    return True
 
 
 @njit(cache=True, inline="always")
@@ -100,22 +100,21 @@ def stage_surfaces(A_s, b_s, locate):
     return A_s, b_s
 
 
-def _jit_as(name):
+def _jit_as(name, inline=False):
     """``njit(cache=True)`` for a closure of the method ``name``, under its own name: its
     own file in numba's disk cache (``warmup.missing_kernels`` can tell which method is
     compiled) and a stable identity (see ``numba_cache``), since its callers' cache keys
     and its own index key pickle it."""
     def decorate(function):
         function.__name__ = function.__qualname__ = f"{function.__name__}_{name}"
-        dispatcher = njit(cache=True)(function)
+        dispatcher = njit(cache=True, inline="always" if inline else "never")(function)
         dispatcher._set_uuid(f"softimpact:kernels.driver.{function.__name__}")
         return dispatcher
     return decorate
 
 
 def crossing_pieces(name, step, dense, refine, enter_mode):
-    """(redo, cross, plain) of a method: redo a step up to a located crossing; cross
-    there; the plain scheme's update after a step."""
+    """(redo, cross) of a method: redo a step up to a located crossing; cross there."""
 
     @_jit_as(name)
     def redo(rhs, p, t, y, h, h_full, surfaces, mask, state, stage):
@@ -150,15 +149,7 @@ def crossing_pieces(name, step, dense, refine, enter_mode):
         apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
         enter_mode(istate)
 
-    @_jit_as(name)
-    def plain(y, mode, A_s, b_s, contact, fstate, istate):
-        """The plain scheme after a step: the mode is the state's; True when the new mode
-        changes the method."""
-        plain_mode_update(y, A_s, b_s, contact, istate)
-        track_contact_at(y, A_s, b_s, contact, fstate)
-        return istate[MODE] != mode and enter_mode(istate)
-
-    return redo, cross, plain
+    return redo, cross
 
 
 # ---------------------------------------------------------------------------------------
@@ -168,7 +159,7 @@ def crossing_pieces(name, step, dense, refine, enter_mode):
 def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, change_method,
                   enter_mode):
     """The ``advance`` of an adaptive method with these hooks (see the module's doc)."""
-    redo, cross, plain = crossing_pieces(name, step, dense, refine, enter_mode)
+    redo, cross = crossing_pieces(name, step, dense, refine, enter_mode)
 
     @_jit_as(name)
     def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
@@ -185,8 +176,7 @@ def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, c
             if need_first:
                 istate[N_RHS] += begin(rhs, p, t, y, mode, work, v)
                 need_first = False
-            h = min(h, opts[H_MAX])
-            h_step, truncated = landing(h, t, t_end)
+            h, h_step, truncated = landing(h, opts[H_MAX], t, t_end)
             ok, evals = step(rhs, p, t, y, h_step, mode, stage_A, stage_b, work, v)
             istate[N_RHS] += evals
             err, c = error(y, h_step, work, opts, v) if ok else np.inf, controller(v)
@@ -219,10 +209,12 @@ def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, c
                     fstate[H] = h_next
                     return DIVERGED
                 if change:
-                    change_method(istate, mode)
-                    need_first = True
+                    need_first = change_method(istate, mode)
                 if not locate and A_s.shape[0] > 0:  # plain scheme: the mode is the state's
-                    need_first = plain(y, mode, A_s, b_s, contact, fstate, istate) or need_first
+                    plain_mode_update(y, A_s, b_s, contact, istate)
+                    track_contact_at(y, A_s, b_s, contact, fstate)
+                    if istate[MODE] != mode and enter_mode(istate):
+                        need_first = True
             if mask != 0:
                 cross(mask, y, surfaces, istate)
                 need_first, switches = True, switches + 1
@@ -246,7 +238,7 @@ def fixed_loop(name, begin, step, dense, accept):
     """The ``advance`` of a fixed-step method with these hooks: steps on the grid ``t + k
     (t_end - t) / n``, ``n`` the smallest count whose step does not exceed
     ``opts[H_FIXED]``; a located switch inserts a step up to it and the grid goes on."""
-    redo, cross, plain = crossing_pieces(name, step, dense, no_refinement, same_method)
+    redo, cross = crossing_pieces(name, step, dense, no_refinement, same_method)
 
     @_jit_as(name)
     def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
@@ -293,8 +285,9 @@ def fixed_loop(name, begin, step, dense, accept):
                     return TOO_MANY_SWITCHES
                 continue
             t, k = target, k + 1
-            if not locate and A_s.shape[0] > 0:
-                plain(y, mode, A_s, b_s, contact, fstate, istate)
+            if not locate and A_s.shape[0] > 0:  # plain scheme: the mode is the state's
+                plain_mode_update(y, A_s, b_s, contact, istate)
+                track_contact_at(y, A_s, b_s, contact, fstate)
         return OK
 
     return advance

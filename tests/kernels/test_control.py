@@ -26,12 +26,13 @@ def test_first_step_carries_the_last_proposal_or_takes_a_percent_of_the_span():
 
 
 def test_landing_hits_the_end_time_exactly():
-    assert control.landing(0.1, 0.0, 1.0) == (0.1, False)
-    h, truncated = control.landing(0.3, 0.8, 1.0)
-    assert truncated and 0.8 + h == 1.0
+    assert control.landing(0.1, 0.5, 0.0, 1.0) == (0.1, 0.1, False)
+    assert control.landing(0.7, 0.5, 0.0, 1.0) == (0.5, 0.5, False)  # capped
+    h, step, truncated = control.landing(0.3, 0.5, 0.8, 1.0)
+    assert h == 0.3 and truncated and 0.8 + step == 1.0
     # within 0.01 % of the end the step is stretched onto it instead of leaving a sliver
-    h, truncated = control.landing(0.19999, 0.8, 1.0)
-    assert truncated and 0.8 + h == 1.0
+    h, step, truncated = control.landing(0.19999, 0.5, 0.8, 1.0)
+    assert truncated and 0.8 + step == 1.0
 
 
 def test_a_refused_step_shrinks_by_the_elementary_controller():
