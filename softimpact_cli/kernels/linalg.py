@@ -12,7 +12,7 @@ SQRT_EPS = 1.4901161193847656e-08
 CBRT_EPS = 6.055454452393343e-06
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lu_factor(a, piv):
     """In-place LU with partial pivoting (Doolittle, L unit lower); False if singular.
 
@@ -45,7 +45,7 @@ def lu_factor(a, piv):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lu_solve(a, piv, x):
     """Solve with the factors of ``lu_factor``; ``x`` holds the right-hand side on entry."""
     n = a.shape[0]
@@ -67,7 +67,7 @@ def lu_solve(a, piv, x):
         x[i] = acc / a[i, i]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fd_jacobian(rhs, p, t, y, mode, f0, jac, dfdt, ytmp, ftmp):
     """Forward-difference d rhs/dy and central-difference d rhs/dt in ``mode``.
 
