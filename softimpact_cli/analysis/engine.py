@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from functools import cache
+from functools import cache, cached_property
 from typing import Any
 
 import numpy as np
@@ -108,6 +108,12 @@ class KnownOrbits:
                    np.asarray(max_g, dtype=np.float64).reshape(len(orbits)),
                    float(capture_tol), int(capture_hits))
 
+    @cached_property
+    def bundle(self) -> orbit.Known:
+        """The kernel's ``Known`` bundle (built once: every trajectory passes it)."""
+        return orbit.Known(self.points, self.periods, self.max_g, self.capture_tol,
+                           self.capture_hits)
+
 
 def no_known_orbits(dim: int) -> KnownOrbits:
     return KnownOrbits.from_orbits([], [], 0.0, 1, dim)
@@ -123,6 +129,7 @@ class RecurrenceCells:
         self.hits = int(hits)
         self.table = cells.new_cells()
         self.visited = np.empty(max_periods + 1, dtype=np.int64)  # filled by each classify
+        self.bundle = orbit.Cells(self.size, self.hits, self.visited)  # the kernel's bundle
 
     def remember(self, classification: Classification, code: int) -> None:
         """Mark the cells the last classified trajectory visited with its label code."""
@@ -177,12 +184,10 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
     if recurrence is None:
         recurrence = _no_cells()
     out = orbit.classify_near(
-        problem.advance, problem.system.rhs, problem.params, y0, (float(t0), problem.period),
+        problem.advance, problem.system.rhs, problem.params, (y0, float(t0), problem.period),
         problem.kernel_args(), problem.options(),
         (s.max_periods, s.max_orbit_period, s.convergence_tol),
-        orbit.Known(known.points, known.periods, known.max_g, known.capture_tol,
-                    known.capture_hits),
-        orbit.Cells(recurrence.table, recurrence.size, recurrence.hits, recurrence.visited),
+        known.bundle, recurrence.bundle, recurrence.table,
     )
     q = int(out.period)
     return Classification(
@@ -232,7 +237,7 @@ def record_trajectory(problem: Problem, state, t0: float, periods: int,
     n0 = int(orbit.first_section(float(t0), T))
     t_end = (n0 + periods) * T
     capacity = int(np.floor((t_end - t0) / dt + 1e-9)) + 1
-    out = orbit.record(problem.advance, problem.system.rhs, problem.params, y0, (float(t0), T),
+    out = orbit.record(problem.advance, problem.system.rhs, problem.params, (y0, float(t0), T),
                        int(periods), problem.kernel_args(), problem.options(dt, float(t0)),
                        capacity)
     n = out.n_samples

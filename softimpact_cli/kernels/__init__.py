@@ -8,8 +8,9 @@ kernels take the method as a first-class function:
 
 with the bundles ``surfaces = (A, b, relevance, contact)``, ``state = (istate, fstate,
 work)`` (``orbit.new_state``) and ``samples = (sample_t, sample_y)``. A method module
-holds its tableau, step, error norm, dense output and controller constants and hands them
-to a loop of ``driver`` (see there); adding one is its module and a line in METHOD_MODULES.
+holds its tableau and its hooks (step, error norm, dense output, controller constants)
+and builds ``advance`` with a loop of ``driver`` (see there); adding one is its module
+and a line in METHOD_MODULES.
 """
 
 from importlib import import_module

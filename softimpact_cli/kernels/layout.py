@@ -30,7 +30,7 @@ N_STIFF_STEPS = 7  # accepted steps of the stiff method (rodas4, alone or inside
 N_METHOD_SWITCHES = 8  # auto: changes between the explicit and the stiff method
 N_COUNTERS = 9  # istate[:N_COUNTERS] are what engine.COUNTER_NAMES names (mode, counters)
 # the stepper's running state, carried across calls like the mode
-VARIANT = 9  # which kind of step the method takes now (``driver.Stepper``; 0 for most)
+VARIANT = 9  # which kind of step the method takes now (see ``driver``; 0 for most)
 AUTO_STIFF = VARIANT  # auto (kernels/auto.py): 1 while the stiff method runs
 AUTO_STIFF_MODES = 10  # bit m set: a phase in mode m starts with the stiff method
 AUTO_HITS = 11  # Hairer's stiffness test: recent steps that looked stability bound

@@ -42,7 +42,7 @@ Classified = namedtuple("Classified", ["status", "period", "periods_used", "orbi
 # there); built in Python by ``analysis.engine`` or in jitted code by ``no_known`` and
 # ``no_cells``.
 Known = namedtuple("Known", ["points", "periods", "max_g", "capture_tol", "capture_hits"])
-Cells = namedtuple("Cells", ["table", "size", "hits", "visited"])
+Cells = namedtuple("Cells", ["size", "hits", "visited"])
 # What ``record`` returns: sample_t (n_samples,), sample_y (n_samples, dim), samples
 # written; section_t (n_periods + 1,), section_y (n_periods + 1, dim), contacts and max_g
 # per period (row 0: before the first section); rows after a failure are NaN.
@@ -163,7 +163,7 @@ def follow_known(y, known, free, streak, last_k, last_j):
 
 
 @njit(cache=True)
-def follow_cells(y, n, cells, run, run_code):
+def follow_cells(y, n, cells, table, run, run_code):
     """Record the cell of section point n in ``visited``; the run of consecutive periods in
     cells of one label after it: (run, its label code)."""
     if n >= cells.visited.shape[0]:
@@ -171,8 +171,8 @@ def follow_cells(y, n, cells, run, run_code):
     key = cell_key(y, cells.size)  # every visited key is written, whatever classifies
     cells.visited[n] = key
     code = MIXED_CELL
-    if key != NO_CELL and key in cells.table:
-        code = cells.table[key]
+    if key != NO_CELL and key in table:
+        code = table[key]
     if code == MIXED_CELL:
         return 0, run_code
     if code == run_code:
@@ -213,32 +213,33 @@ def no_known(dim):
 @njit(cache=True)
 def no_cells():
     """The ``cells`` bundle without recurrence cells."""
-    return Cells(new_cells(), 0.0, 1, np.empty(0, dtype=np.int64))
+    return Cells(0.0, 1, np.empty(0, dtype=np.int64))
 
 
 @njit(cache=True)
-def classify(advance, rhs, p, y0, section, surfaces, opts, limits):
+def classify(advance, rhs, p, start, surfaces, opts, limits):
     """``classify_near`` with no known orbits and no cells: stop when the points repeat."""
-    return classify_near(advance, rhs, p, y0, section, surfaces, opts, limits,
-                         no_known(y0.shape[0]), no_cells())
+    return classify_near(advance, rhs, p, start, surfaces, opts, limits,
+                         no_known(start[0].shape[0]), no_cells(), new_cells())
 
 
 @njit(cache=True)
-def classify_near(advance, rhs, p, y0, section, surfaces, opts, limits, known, cells):
+def classify_near(advance, rhs, p, start, surfaces, opts, limits, known, cells, table):
     """Integrate from (t0, y0) until the section points repeat, or follow a known orbit,
     or the budget ends, or it fails; returns a ``Classified``.
 
-    section = (t0, T); surfaces = (A, b, relevance, contact); limits = (max_periods,
+    start = (y0, t0, T); surfaces = (A, b, relevance, contact); limits = (max_periods,
     max_orbit_period, tol) of the convergence test.
     known = Known(points (K, Q, dim): K known stable orbits in time order, periods (K,),
     max_g (K,) of the contact function, capture_tol, capture_hits): captured after
     capture_hits consecutive contact-free periods, each within capture_tol * max(1, |y|)
     of the known orbit's next point (capture_tol = 0: off).
-    cells = Cells(table {cell key: label code} (``kernels.cells``), size (0: off), hits,
-    visited (max_periods + 1,) int64): a cell label after ``hits`` consecutive periods in
-    cells of that label; ``visited`` receives the section points' cell keys in order.
+    cells = Cells(size (0: off), hits, visited (max_periods + 1,) int64), table {cell key:
+    label code} (``kernels.cells``; apart: a typed dict inside a tuple costs ~20 us per
+    call from Python): a cell label after ``hits`` consecutive periods in cells of that
+    label; ``visited`` receives the section points' cell keys in order.
     """
-    t0, period = section
+    y0, t0, period = start
     max_periods, max_orbit_period, tol = limits
     dim = y0.shape[0]
     y = y0.copy()
@@ -269,7 +270,7 @@ def classify_near(advance, rhs, p, y0, section, surfaces, opts, limits, known, c
             return Classified(status, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
         hist[k] = y
         if use_cells:
-            run, run_code = follow_cells(y, n, cells, run, run_code)
+            run, run_code = follow_cells(y, n, cells, table, run, run_code)
         if use_known:
             free = contacts[k] == 0 and not (surfaces[3] >= 0 and (istate[MODE] >> surfaces[3]) & 1)
             streak, last_k, last_j = follow_known(y, known, free, streak, last_k, last_j)
@@ -287,14 +288,14 @@ def classify_near(advance, rhs, p, y0, section, surfaces, opts, limits, known, c
 
 
 @njit(cache=True)
-def record(advance, rhs, p, y0, section, n_periods, surfaces, opts, n_samples):
-    """Integrate n_periods forcing periods from section = (t0, T), writing dense samples;
+def record(advance, rhs, p, start, n_periods, surfaces, opts, n_samples):
+    """Integrate n_periods forcing periods from start = (y0, t0, T), writing dense samples;
     returns a ``Recorded``.
 
     ``opts[SAMPLE_DT]``/``opts[SAMPLE_T0]`` set the sampling; ``n_samples`` is the capacity.
     Section arrays have n_periods + 1 rows (row 0 is the first section at or after t0).
     """
-    t0, period = section
+    y0, t0, period = start
     dim = y0.shape[0]
     y = y0.copy()
     state = new_state(y, surfaces[0], surfaces[1])
