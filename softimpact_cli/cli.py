@@ -387,13 +387,9 @@ def example(kind):
     click.echo(example_scene(kind), nl=False)
 
 
-@main.group()
-def plot():
-    """Draw figures from result files."""
-
-
-_dpi_option = click.option("--dpi", type=click.IntRange(min=10, max=2400), default=150,
-                           show_default=True, help="Resolution of raster figures (PNG).")
+def _dpi_option() -> click.Option:
+    return click.Option(["--dpi"], type=click.IntRange(min=10, max=2400), default=150,
+                        show_default=True, help="Resolution of raster figures (PNG).")
 
 
 def _draw(result: str, output: str, dpi: int, kind: str, draw, complete: bool = False,
@@ -416,128 +412,51 @@ def _draw(result: str, output: str, dpi: int, kind: str, draw, complete: bool = 
     click.echo(f"figure -> {path}")
 
 
-@plot.command("trajectory")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@click.option("--last-periods", type=click.IntRange(min=1), default=None,
-              help="Periods drawn strongly as the steady state (default: a quarter, <= 20).")
-@_user_errors
-def plot_trajectory_cmd(result, output, dpi, last_periods):
-    """Time series, phase portraits and Poincare points of a trajectory RESULT."""
-    from . import plot
-
-    _draw(result, output, dpi, "trajectory",
-          lambda ds: plot.trajectory(ds, last_periods=last_periods))
+def _plot_option(option) -> click.Option:
+    """A click option from a kind's PlotOption (``kinds.PlotOption``)."""
+    types = {"int>=1": click.IntRange(min=1), "choice": click.Choice(list(option.choices)),
+             "text": None}
+    return click.Option([option.flag, option.keyword], type=types[option.kind],
+                        default=option.default, help=option.help,
+                        show_default=option.default is not None)
 
 
-@plot.command("basins")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@click.option("--max-panels", type=click.IntRange(min=1), default=36, show_default=True,
-              help="Largest number of grid points drawn as panels.")
-@_user_errors
-def plot_basins_cmd(result, output, dpi, max_panels):
-    """Basins of attraction of a plane sweep RESULT, one panel per grid point."""
-    from . import plot
+def _plot_command(kind) -> click.Command:
+    """``softimpact plot <kind>``, built from the kind's PlotSpec."""
+    spec = kind.plot
 
-    _draw(result, output, dpi, "basins", lambda ds: plot.basins(ds, max_panels=max_panels),
-          complete=True, accept=lambda a: a.get("ic_kind") == "plane",
-          expected="a complete sweep over a plane of initial conditions")
+    def command(result, output, dpi, **options):
+        draw = kind.figure_function()
+        _draw(result, output, dpi, kind.name, lambda ds: draw(ds, **options),
+              complete=spec.complete, accept=spec.accept, expected=spec.expected)
 
-
-@plot.command("dcrit")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@click.option("--combination", default=None,
-              help="Draw only this combination's x1 - x2 traces (default: all).")
-@_user_errors
-def plot_dcrit_cmd(result, output, dpi, combination):
-    """Critical-distance curves, surviving-combination regions and x1 - x2 traces."""
-    from . import plot
-
-    def draw(ds):
-        names = [str(n) for n in ds["combination_label"].values]
-        if combination is not None and combination not in names:
-            raise ConfigError(f"--combination: {combination!r} is not one of "
-                              f"{', '.join(names)}")
-        return plot.dcrit(ds, combination=combination)
-
-    _draw(result, output, dpi, "dcrit", draw)
+    params = [click.Argument(["result"]),
+              click.Option(["-o", "--output"], required=True,
+                           help="Figure file (.png, .pdf, .svg).")]
+    params += [_dpi_option(), *(_plot_option(option) for option in spec.options)]
+    return click.Command(kind.name, callback=_user_errors(command), params=params,
+                         help=spec.help)
 
 
-@plot.command("stability")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@click.option("--against", type=click.Choice(["d", "phi", "k_c", "c_c", "t0"]), default=None,
-              help="Grid axis on the horizontal axis (default: the swept one).")
-@_user_errors
-def plot_stability_cmd(result, output, dpi, against):
-    """Basin-stability curves with 95% Wilson bands of a stability RESULT."""
-    from . import plot
+class _KindPlots(click.Group):
+    """One ``plot`` command per registered kind that declares a figure, read from the
+    registry when the command line is parsed."""
 
-    _draw(result, output, dpi, "stability", lambda ds: plot.stability(ds, against=against),
-          complete=True)
+    def list_commands(self, ctx):
+        from .kinds import KINDS
 
+        return sorted(name for name, kind in KINDS.items() if kind.plot is not None)
 
-@plot.command("bifurcation")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@_user_errors
-def plot_bifurcation_cmd(result, output, dpi):
-    """Section displacements of both bodies against d, destruction points marked."""
-    from . import plot
+    def get_command(self, ctx, name):
+        from .kinds import KINDS
 
-    _draw(result, output, dpi, "bifurcation", plot.bifurcation)
+        kind = KINDS.get(name)
+        return _plot_command(kind) if kind is not None and kind.plot is not None else None
 
 
-@plot.command("map")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@_user_errors
-def plot_map_cmd(result, output, dpi):
-    """Predicted and found numbers of coexisting solutions over two parameters."""
-    from . import plot
-
-    _draw(result, output, dpi, "map", plot.map, complete=True)
-
-
-@plot.command("design")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@_user_errors
-def plot_design_cmd(result, output, dpi):
-    """The (d, phi) plane with the target-only region, the pick and runners-up, beside
-    the basin stability at the pick and under perturbations."""
-    from . import plot
-
-    _draw(result, output, dpi, "design", plot.design)
-
-
-@plot.command("catalogue")
-@click.argument("result")
-@click.option("-o", "--output", required=True,
-              help="Figure file (.png, .pdf, .svg).")
-@_dpi_option
-@_user_errors
-def plot_catalogue_cmd(result, output, dpi):
-    """Attractors on the phase plane and one panel per combination of a catalogue RESULT."""
-    from . import plot
-
-    _draw(result, output, dpi, "catalogue", plot.catalogue)
+@main.group(cls=_KindPlots)
+def plot():
+    """Draw figures from result files."""
 
 
 @main.command()

@@ -64,9 +64,10 @@ def resolve(words: list[str]) -> tuple[click.Command, list[str]]:
     command, rest = main, list(words)
     while isinstance(command, click.Group) and rest and not rest[0].startswith("-"):
         name = rest.pop(0)
-        if name not in command.commands:
+        sub = command.get_command(click.Context(command), name)  # `plot` asks the registry
+        if sub is None:
             pytest.fail(f"README: `softimpact {' '.join(words)}`: no subcommand {name!r}")
-        command = command.commands[name]
+        command = sub
     return command, rest
 
 

@@ -10,7 +10,8 @@ branches on a kind's name.
 
 Adding a kind: a module here with its settings dataclass and its ``KINDS`` tuple, its
 line in :data:`MODULES`, and a figure: ``plot/<kind>_figure.py`` and its function
-``plot.<kind>(ds, ax=None)`` in ``plot/__init__.py`` (plus its ``plot`` command).
+``plot.<kind>(ds, ax=None)`` in ``plot/__init__.py``, which the kind names in its
+:class:`PlotSpec` (the ``softimpact plot <kind>`` command is built from it).
 The functions a kind names from later layers (analysis, sweep, store, plot) are imported
 when called, so that reading a scene imports no analysis code.
 """
@@ -63,6 +64,41 @@ class Sections:
 
 
 @dataclass(frozen=True)
+class PlotOption:
+    """A command-line option of ``softimpact plot <kind>``, passed to the figure function
+    as the keyword ``keyword``. ``kind``: "int>=1" (a positive integer), "choice"
+    (one of ``choices``) or "text"."""
+
+    flag: str
+    keyword: str
+    help: str
+    kind: str = "text"
+    default: Any = None
+    choices: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class PlotSpec:
+    """How ``softimpact plot <kind>`` draws a result of a kind.
+
+    draw : "module:function" (imported when called; default the figure function
+        ``plot.<kind>``), called as ``draw(ds, **options)`` and returning a Figure; it
+        raises ConfigError for an option the result cannot honour
+    help : the command's help text; options : its PlotOption tuple
+    complete : refuse an incomplete result
+    accept(attrs) -> bool, expected : which results it draws besides the kind's own
+        (``expected`` names them in the refusal)
+    """
+
+    help: str
+    draw: str | None = None
+    options: tuple[PlotOption, ...] = ()
+    complete: bool = False
+    accept: Callable[[Mapping[str, Any]], bool] | None = None
+    expected: str | None = None
+
+
+@dataclass(frozen=True)
 class AnalysisKind:
     """One analysis kind.
 
@@ -85,6 +121,7 @@ class AnalysisKind:
         ``softimpact compare`` of two results of this kind (None: not comparable)
     needs_attractors : the sweep stops before any chunk when the catalogue is empty
     searches_attractors : runs the attractor search without a [catalogue] section
+    plot : its figure (``softimpact plot <kind>``), a PlotSpec
     """
 
     name: str
@@ -108,6 +145,12 @@ class AnalysisKind:
     searches_attractors: bool = False
     progress_unit: str = "steps"
     options: tuple[str, ...] = field(default=())  # run options it takes (workers, ...)
+    plot: PlotSpec | None = None
+
+    def figure_function(self) -> Callable[..., Any]:
+        """The function drawing a result of this kind (see PlotSpec.draw)."""
+        module, _, name = (self.plot.draw or f"softimpact_cli.plot:{self.name}").partition(":")
+        return getattr(importlib.import_module(module), name)
 
     @property
     def sweep(self) -> bool:

@@ -6,7 +6,7 @@ from dataclasses import dataclass, replace
 
 from ..config.reader import positive
 from ..config.sweep import read_catalogue
-from . import AnalysisKind, Sections, forcing_period
+from . import AnalysisKind, PlotSpec, Sections, forcing_period
 
 QUICK_STEPS = 50  # --quick: largest number of d steps of a bifurcation diagram
 MAX_STEPS = 100_000
@@ -129,4 +129,6 @@ def compare_text(report: dict, max_points: int) -> list[str]:
 KINDS = (AnalysisKind("bifurcation", "each solution followed along d, destruction points "
                       "located", read, plan, sections=sections, shrink=shrink, run=run,
                       check=check, info_after=info_lines, compare=compare,
-                      compare_text=compare_text, progress_unit="branches"),)
+                      compare_text=compare_text, progress_unit="branches",
+                      plot=PlotSpec("Section displacements of both bodies against d, "
+                                    "destruction points marked.")),)

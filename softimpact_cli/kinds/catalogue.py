@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from ..config.limits import MAX_SEED
 from ..config.reader import positive
 from ..config.sweep import read_box
-from . import AnalysisKind, read_t0
+from . import AnalysisKind, PlotSpec, read_t0
 
 
 @dataclass(frozen=True)
@@ -74,4 +74,6 @@ def report(ds) -> str:
 
 KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
                       read, plan, run=run, summary=summary, report=report,
-                      searches_attractors=True, progress_unit="initial conditions"),)
+                      searches_attractors=True, progress_unit="initial conditions",
+                      plot=PlotSpec("Attractors on the phase plane and one panel per "
+                                    "combination of a catalogue RESULT.")),)

@@ -10,7 +10,7 @@ import numpy as np
 from ..config.expressions import parse_multiple
 from ..config.reader import ConfigError
 from ..config.sweep import read_catalogue, read_grid
-from . import AnalysisKind, Sections, forcing_period
+from . import AnalysisKind, PlotOption, PlotSpec, Sections, forcing_period
 
 QUICK_PHIS = 64  # --quick: largest number of phases of a critical-distance curve
 DEFAULT_PHIS = 256  # phases over [0, 2 pi) without [grid] phi
@@ -115,6 +115,23 @@ def compare_text(report: dict, max_points: int) -> list[str]:
     return dcrit_comparison_text(report)
 
 
+def draw(ds, combination=None):
+    """``plot.dcrit``, refusing a combination the result does not hold."""
+    from ..plot import dcrit
+
+    names = [str(n) for n in ds["combination_label"].values]
+    if combination is not None and combination not in names:
+        raise ConfigError(f"--combination: {combination!r} is not one of {', '.join(names)}")
+    return dcrit(ds, combination=combination)
+
+
+PLOT = PlotSpec(
+    "Critical-distance curves, surviving-combination regions and x1 - x2 traces.",
+    draw=f"{__name__}:draw",
+    options=(PlotOption("--combination", "combination",
+                        "Draw only this combination's x1 - x2 traces (default: all)."),))
+
 KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
                       plan, sections=sections, shrink=shrink, run=run, check=check,
-                      compare=compare, compare_text=compare_text, progress_unit="phases"),)
+                      compare=compare, compare_text=compare_text, progress_unit="phases",
+                      plot=PLOT),)

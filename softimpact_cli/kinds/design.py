@@ -9,7 +9,7 @@ from __future__ import annotations
 from ..config.limits import MAX_TRAJECTORIES, design_trajectories
 from ..config.reader import ConfigError
 from ..config.sweep import read_catalogue, read_initial_conditions
-from . import AnalysisKind, Sections
+from . import AnalysisKind, PlotSpec, Sections
 
 
 def read(sec, ctx):
@@ -90,4 +90,7 @@ KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target surviv
                       "design)", read, plan, sections=sections, run=run, summary=summary,
                       report=report, info_lines=info_lines, info_catalogue=False,
                       outcome_counts=outcome_counts, progress_unit="trajectories",
-                      options=("workers", "scheduler", "echo")),)
+                      options=("workers", "scheduler", "echo"),
+                      plot=PlotSpec("The (d, phi) plane with the target-only region, the "
+                                    "pick and runners-up, beside the basin stability at "
+                                    "the pick and under perturbations.")),)

@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue, read_grid, read_initial_conditions
-from . import AnalysisKind, Sections
+from . import AnalysisKind, PlotOption, PlotSpec, Sections
 
 
 @dataclass(frozen=True)
@@ -109,12 +109,29 @@ def map_counts(ds, scene, catalogue):
     return add_map_counts(ds, scene.system, dict(scene.values), list(catalogue.attractors))
 
 
+PLOTS = {
+    "basins": PlotSpec(
+        "Basins of attraction of a plane sweep RESULT, one panel per grid point.",
+        options=(PlotOption("--max-panels", "max_panels", "Largest number of grid points "
+                            "drawn as panels.", kind="int>=1", default=36),),
+        complete=True, accept=lambda attrs: attrs.get("ic_kind") == "plane",
+        expected="a complete sweep over a plane of initial conditions"),
+    "stability": PlotSpec(
+        "Basin-stability curves with 95% Wilson bands of a stability RESULT.",
+        options=(PlotOption("--against", "against", "Grid axis on the horizontal axis "
+                            "(default: the swept one).", kind="choice",
+                            choices=("d", "phi", "k_c", "c_c", "t0")),),
+        complete=True),
+    "map": PlotSpec("Predicted and found numbers of coexisting solutions over two "
+                    "parameters.", complete=True),
+}
+
 KINDS = tuple(
     AnalysisKind(name, description, _reader(name), plan, sections=sections, shrink=shrink,
                  check=check, summary=summarise, after_sweep=after,
                  outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
                  needs_attractors=name == "map",  # its counts need d_crit
-                 progress_unit="trajectories")
+                 progress_unit="trajectories", plot=PLOTS[name])
     for name, description, summarise, after in (
         ("basins", "the label of every start on a plane, at every [grid] point", summary,
          None),

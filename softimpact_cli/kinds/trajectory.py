@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..config.limits import MAX_TRAJECTORY_SAMPLES
-from . import AnalysisKind, read_state, read_t0
+from . import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
 
 
 @dataclass(frozen=True)
@@ -52,5 +52,10 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"{a.samples_per_period} samples per period")
 
 
+PLOT = PlotSpec(
+    "Time series, phase portraits and Poincare points of a trajectory RESULT.",
+    options=(PlotOption("--last-periods", "last_periods", "Periods drawn strongly as the "
+                        "steady state (default: a quarter, <= 20).", kind="int>=1"),))
+
 KINDS = (AnalysisKind("trajectory", "one trajectory, recorded and classified", read, plan,
-                      run=run),)
+                      run=run, plot=PLOT),)

@@ -8,10 +8,29 @@ from click.testing import CliRunner
 from softimpact_cli.cli import main
 from softimpact_cli.config import ConfigError, parse_scene
 from softimpact_cli.config.examples import example as example_scene
-from softimpact_cli.kinds import ANALYSIS_KINDS, KINDS, SWEEP_KINDS, AnalysisKind, get
+from softimpact_cli.kinds import (
+    ANALYSIS_KINDS,
+    KINDS,
+    SWEEP_KINDS,
+    AnalysisKind,
+    PlotOption,
+    PlotSpec,
+    get,
+)
 from softimpact_cli.kinds.check import check_scene
 from softimpact_cli.kinds.run import plan_text, run_scene
 from softimpact_cli.report.info import describe
+
+
+def test_every_kind_declares_a_figure_and_the_plot_commands_follow_the_registry():
+    from softimpact_cli import plot
+
+    assert all(kind.plot is not None for kind in KINDS.values())
+    for name, kind in KINDS.items():
+        assert callable(kind.figure_function())
+        assert getattr(plot, name) is not None  # the API's si.plot.<kind>
+    out = CliRunner().invoke(main, ["plot", "--help"]).output
+    assert all(f"  {name} " in out for name in KINDS)
 
 
 def test_every_kind_has_a_home_and_sweeps_are_those_without_a_run():
@@ -58,14 +77,26 @@ def _toy_run(scene, progress=None, **_):
                       attrs={"analysis": "toy", "outcome": "done"})
 
 
+def toy_figure(ds, ax=None, marker="o"):
+    """The toy kind's figure: its one number as a point."""
+    from softimpact_cli.plot import new_figure
+
+    fig = new_figure() if ax is None else ax.figure
+    (fig.add_subplot() if ax is None else ax).plot([0.0], [float(ds["omega"])], marker)
+    return fig
+
+
 TOY = AnalysisKind("toy", "a kind added by one registry entry", _toy_read,
                    lambda scene, workers=None, chunk_size=None: "toy: scale the frequency",
-                   run=_toy_run, summary=lambda ds: {"omega": float(ds["omega"])})
+                   run=_toy_run, summary=lambda ds: {"omega": float(ds["omega"])},
+                   plot=PlotSpec("The toy's frequency.", draw=f"{__name__}:toy_figure",
+                                 options=(PlotOption("--marker", "marker", "A marker.",
+                                                     kind="choice", choices=("o", "x")),)))
 
 
 def test_a_new_kind_is_one_registry_entry(monkeypatch, tmp_path):
-    """Registered, a kind is read, planned, run, written and described by the existing
-    code, with no other change."""
+    """Registered, a kind is read, planned, run, written, described and plotted by the
+    existing code, with no other change."""
     monkeypatch.setitem(KINDS, "toy", TOY)
     text = ('[system]\nmodel = "duffing"\n[analysis]\nkind = "toy"\nscale = 2.0\n'
             f'[output]\npath = "{tmp_path / "toy.h5"}"\n')
@@ -80,6 +111,15 @@ def test_a_new_kind_is_one_registry_entry(monkeypatch, tmp_path):
     assert result.output.startswith("toy: done (") and (tmp_path / "toy.h5").is_file()
     with pytest.raises(ConfigError, match="scale: must be a number"):
         parse_scene(text.replace("2.0", '"two"'), "toy.toml")
+    # its figure: `softimpact plot toy` exists, takes the kind's options, refuses others
+    plot = CliRunner().invoke(main, ["plot", "toy", str(tmp_path / "toy.h5"), "-o",
+                                     str(tmp_path / "toy.png"), "--marker", "x"])
+    assert plot.exit_code == 0, plot.output
+    assert (tmp_path / "toy.png").stat().st_size > 1000
+    assert "toy" in CliRunner().invoke(main, ["plot", "--help"]).output
+    wrong = CliRunner().invoke(main, ["plot", "basins", str(tmp_path / "toy.h5"), "-o",
+                                      str(tmp_path / "b.png")])
+    assert wrong.exit_code == 2 and "holds a 'toy' result" in wrong.output
 
 
 def test_unregistered_kind_is_refused_with_the_registry_list():
