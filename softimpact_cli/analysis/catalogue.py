@@ -124,11 +124,21 @@ def require_attractors(catalogue: Catalogue, kind: str, source: str) -> None:
 def scene_catalogue(scene) -> Catalogue:
     """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...);
     one line (ConfigError) and nothing further computed when it finds no attractor."""
-    c = scene.catalogue
-    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
-                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    left, counts, n_states = scene_body_attractors(scene)
+    cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, left, counts,
+                           n_states)
     require_attractors(cat, scene.analysis.kind, str(scene.source))
     return cat
+
+
+def scene_body_attractors(scene, progress=None) -> tuple[list, dict, int]:
+    """The one-body search every scene's catalogue starts from, over its [catalogue]
+    section's initial conditions at t0 = 0: (left attractors, outcome counts, samples)."""
+    c = scene.catalogue
+    states = sample_states(c.box, c.grid, c.random, c.seed)
+    problem = body_problem(scene.system, scene.values, scene.integrator)
+    left, counts = body_catalogue(problem, states, 0.0, c.match_tol, progress)
+    return left, counts, len(states)
 
 
 def body_problem(system: System, values: dict, integrator: IntegratorSettings) -> Problem:
@@ -323,14 +333,23 @@ def build_catalogue(system: System, values: dict, integrator: IntegratorSettings
     check_bodies(system.bodies, "build_catalogue (left and right attractors)")
     problem = body_problem(system, values, integrator)
     left, counts = body_catalogue(problem, states, t0, match_tol, progress)
+    return extend_catalogue(system, values, integrator, left, counts, len(states))
+
+
+def extend_catalogue(system: System, values: dict, integrator: IntegratorSettings,
+                     left: list, counts: dict, n_states: int) -> Catalogue:
+    """The catalogue at the parameter point ``values`` from the left body's attractors:
+    for a pair, the right body's (at ``values["phi"]``) and the combinations."""
+    check_bodies(system.bodies, "extend_catalogue (left and right attractors)")
     right: list[Attractor] = []
     combos: list[Combination] = []
     if system.bodies == 2:
-        right = right_attractors(problem, left, float(values["phi"]),
-                                 system.extra["right_sign"], system.extra["right_phase"])
+        right = right_attractors(body_problem(system, values, integrator), left,
+                                 float(values["phi"]), system.extra["right_sign"],
+                                 system.extra["right_phase"])
         combos = combinations(left, right)
     return Catalogue(system.model, dict(values), tuple(left), tuple(right), tuple(combos),
-                     counts, len(states))
+                     counts, n_states)
 
 
 # ------------------------------------------------------------------ dataset form

@@ -16,12 +16,10 @@ import xarray as xr
 
 from ..analysis.catalogue import (
     Catalogue,
-    body_catalogue,
-    body_problem,
     catalogue_dataset,
-    combinations,
-    right_attractors,
+    extend_catalogue,
     sample_states,
+    scene_body_attractors,
 )
 from ..analysis.design import AXES, NoRegion, design
 from ..config import ConfigError, Grid, Scene
@@ -35,12 +33,8 @@ def pair_catalogue(scene: Scene, left: list, counts: dict, n_states: int, phi: f
                    ) -> Catalogue:
     """The pair's catalogue at phi from the left body's attractors (as the sweeps build
     theirs in ``prepare_catalogues``, without searching the left body again)."""
-    system = scene.system
-    problem = body_problem(system, scene.values, scene.integrator)
-    right = right_attractors(problem, left, phi, system.extra["right_sign"],
-                             system.extra["right_phase"])
-    return Catalogue(system.model, {**scene.values, "phi": phi}, tuple(left), tuple(right),
-                     tuple(combinations(left, right)), counts, n_states)
+    return extend_catalogue(scene.system, {**scene.values, "phi": phi}, scene.integrator,
+                            left, counts, n_states)
 
 
 def run_design(scene: Scene, workers: int | None = None, scheduler: str | None = None,
@@ -60,11 +54,10 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
         say(f"[{time.perf_counter() - t_start:6.1f} s] {message}")
 
     c = scene.catalogue
-    states = sample_states(c.box, c.grid, c.random, c.seed)
-    echo(f"catalogue: searching {len(states)} initial conditions of one body")
-    left, counts = body_catalogue(body_problem(scene.system, scene.values, scene.integrator),
-                                  states, 0.0, c.match_tol)
-    first = pair_catalogue(scene, left, counts, len(states), a.bounds["phi"][0])
+    echo(f"catalogue: searching {len(sample_states(c.box, c.grid, c.random, c.seed))} "
+         "initial conditions of one body")
+    left, counts, n_states = scene_body_attractors(scene)
+    first = pair_catalogue(scene, left, counts, n_states, a.bounds["phi"][0])
     names = first.names
     if a.target not in names:
         raise ConfigError(f"{scene.source}: [analysis] target: {a.target!r} is not in the "
@@ -81,7 +74,7 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
         for p in points:
             if float(p["phi"]) not in catalogues:
                 catalogues[float(p["phi"])] = pair_catalogue(scene, left, counts,
-                                                             len(states), float(p["phi"]))
+                                                             n_states, float(p["phi"]))
         axes = {x: tuple(float(p[x]) for p in points) for x in AXES}
         grid = Grid({**axes, "t0": (0.0,) * len(points)}, AXES, panels=True)
         batch = {float(p["phi"]): catalogues[float(p["phi"])] for p in points}
@@ -105,7 +98,7 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
     except NoRegion as exc:
         raise ConfigError(f"{scene.source}: [analysis] target: {exc}") from None
     pick = {x: float(ds[f"point_{x}"].values[0]) for x in AXES}
-    cat = pair_catalogue(scene, left, counts, len(states), pick["phi"])
+    cat = pair_catalogue(scene, left, counts, n_states, pick["phi"])
     ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
                   combine_attrs="override", compat="override", join="exact")
     ds.attrs.update(provenance(scene, started, time.time(), time.perf_counter() - t_start))

@@ -13,13 +13,10 @@ import xarray as xr
 
 from ..analysis.catalogue import (
     Catalogue,
-    body_catalogue,
-    body_problem,
     catalogue_dataset,
-    combinations,
+    extend_catalogue,
     require_attractors,
-    right_attractors,
-    sample_states,
+    scene_body_attractors,
 )
 from ..config import ConfigError, Scene
 from ..kinds import get as kind_of
@@ -39,23 +36,15 @@ def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ..
 
     Returns ({phi: Catalogue}, names in code order).
     """
-    s = scene.catalogue
     system = scene.system
     check_bodies(system.bodies, "prepare_catalogues (a body or a pair's combinations)")
-    problem = body_problem(system, scene.values, scene.integrator)
-    states = sample_states(s.box, s.grid, s.random, s.seed)
-    left, counts = body_catalogue(problem, states, 0.0, s.match_tol, progress)
+    left, counts, n_states = scene_body_attractors(scene, progress)
     catalogues = {}
     phis = scene.grid.distinct("phi") if system.bodies == 2 else (0.0,)
     for phi in phis:
-        right, combos = [], []
-        if system.bodies == 2:
-            right = right_attractors(problem, left, phi, system.extra["right_sign"],
-                                     system.extra["right_phase"])
-            combos = combinations(left, right)
         values = {**scene.values, "phi": phi} if system.bodies == 2 else dict(scene.values)
-        catalogues[float(phi)] = Catalogue(system.model, values, tuple(left), tuple(right),
-                                           tuple(combos), counts, len(states))
+        catalogues[float(phi)] = extend_catalogue(system, values, scene.integrator, left,
+                                                  counts, n_states)
     names = next(iter(catalogues.values())).names
     return catalogues, names
 
