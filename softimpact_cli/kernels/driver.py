@@ -94,20 +94,20 @@ def same_method(istate):
 @njit(cache=True, inline="always")
 def stage_surfaces(A_s, b_s, locate):
     """The surfaces stages read their mode from: none when switches are located (new
-    empty arrays: a slice would be typed non-contiguous and slow every step down)."""
+    empty arrays; with empty slices of A and b the loop measured slower)."""
     if locate:
         return np.empty((0, A_s.shape[1])), np.empty(0)
     return A_s, b_s
 
 
-def _jit_as(name, inline=False):
+def _jit_as(name):
     """``njit(cache=True)`` for a closure of the method ``name``, under its own name: its
     own file in numba's disk cache (``warmup.missing_kernels`` can tell which method is
     compiled) and a stable identity (see ``numba_cache``), since its callers' cache keys
     and its own index key pickle it."""
     def decorate(function):
         function.__name__ = function.__qualname__ = f"{function.__name__}_{name}"
-        dispatcher = njit(cache=True, inline="always" if inline else "never")(function)
+        dispatcher = njit(cache=True)(function)
         dispatcher._set_uuid(f"softimpact:kernels.driver.{function.__name__}")
         return dispatcher
     return decorate
