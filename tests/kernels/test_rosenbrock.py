@@ -1,4 +1,4 @@
-"""Rodas4 (kernels/rosenbrock.py): tableau, linear algebra, orders, L-stability, stiff stops.
+"""Rodas4 (kernels/rosenbrock.py): tableau, orders, L-stability, stiff stops.
 
 The coefficients are Hairer's (rodas.f, METH = 1) in the transformed form. They are
 checked in the standard Rosenbrock form (Hairer & Wanner II, section IV.7): with
@@ -20,7 +20,7 @@ import pytest
 from numba import njit
 from scipy.integrate import solve_ivp
 
-from softimpact_cli.kernels import dense, dopri5, layout, linalg, orbit
+from softimpact_cli.kernels import dense, dopri5, layout, orbit
 from softimpact_cli.kernels import rosenbrock as ro
 from softimpact_cli.kernels.codes import CONVERGED, DIVERGED, OK, STEP_BUDGET
 from softimpact_cli.kernels.orbit import new_state
@@ -147,57 +147,6 @@ def test_kernel_step_damps_a_stiff_contact_mode(h):
     damping = np.linalg.norm(ynew) / np.linalg.norm(y0)
     print(f"h = {h}: |y1|/|y0| = {damping:.2e}")
     assert damping < (0.1 if h == 0.1 else 1e-3)
-
-
-# ---------------------------------------------------------------------------------------
-# linear algebra and Jacobians
-
-
-@pytest.mark.parametrize("n", [1, 2, 4, 20])
-def test_lu_solves_like_numpy(n):
-    rng = np.random.default_rng(n)
-    for _ in range(5):
-        a = rng.normal(size=(n, n))
-        if n > 1:
-            a[0, 0] = 0.0  # pivoting is needed
-        rhs = rng.normal(size=n)
-        lu = a.copy()
-        piv = np.empty(n, np.int64)
-        assert linalg.lu_factor(lu, piv)
-        x = rhs.copy()
-        linalg.lu_solve(lu, piv, x)
-        np.testing.assert_allclose(x, np.linalg.solve(a, rhs), rtol=1e-10, atol=1e-12)
-
-
-def test_lu_reports_a_singular_matrix():
-    a = np.array([[1.0, 2.0], [2.0, 4.0]])
-    assert not linalg.lu_factor(a, np.empty(2, np.int64))
-    assert not linalg.lu_factor(np.zeros((3, 3)), np.empty(3, np.int64))
-
-
-@pytest.mark.parametrize("mode", [0, 1])
-def test_difference_jacobian_matches_the_analytic_one(mode):
-    system = get_system("duffing", 2)
-    p = system.pack(STIFF)
-    y = np.array([2.3, -0.7, 1.2, 0.4])
-    for t in (0.37, 1234.5):  # large t: f_t's step must cope with the phase's rounding
-        J = np.empty((4, 4))
-        ft = np.empty(4)
-        system.jacobian(t, y, p, mode, J, ft)
-        f0 = np.empty(4)
-        system.rhs(t, y, p, mode, f0)
-        Jd = np.empty((4, 4))
-        ftd = np.empty(4)
-        n = linalg.fd_jacobian(system.rhs, p, t, y, mode, f0, Jd, ftd, np.empty(4), np.empty(4))
-        assert n == 6
-        # Rounding of f's terms (up to k_c |x1 - x2 - d| ~ 1e5 here in contact) sets the
-        # scale; the forcing's phase w t carries ~ eps |w t|, so with the step
-        # eps^(1/3) |t|^(1/3) the f_t error grows like (eps |t|)^(2/3).
-        scale = max(1.0, np.max(np.abs(f0)))
-        err_j = np.max(np.abs(Jd - J)) / max(1.0, np.max(np.abs(J)))
-        err_t = np.max(np.abs(ftd - ft)) / scale
-        print(f"mode {mode}, t = {t}: J error {err_j:.1e}, f_t error {err_t:.1e} (relative)")
-        assert err_j < 1e-7 and err_t < 1e-10 * max(1.0, t) ** (2 / 3), (Jd, J, ftd, ft)
 
 
 # ---------------------------------------------------------------------------------------
