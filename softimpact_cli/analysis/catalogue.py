@@ -131,11 +131,18 @@ def scene_catalogue(scene) -> Catalogue:
     return cat
 
 
-def scene_body_attractors(scene, progress=None) -> tuple[list, dict, int]:
-    """The one-body search every scene's catalogue starts from, over its [catalogue]
-    section's initial conditions at t0 = 0: (left attractors, outcome counts, samples)."""
+def catalogue_states(scene) -> np.ndarray:
+    """The initial conditions of a scene's [catalogue] search, (n, 2)."""
     c = scene.catalogue
-    states = sample_states(c.box, c.grid, c.random, c.seed)
+    return sample_states(c.box, c.grid, c.random, c.seed)
+
+
+def scene_body_attractors(scene, progress=None, states=None) -> tuple[list, dict, int]:
+    """The one-body search every scene's catalogue starts from, over its [catalogue]
+    section's initial conditions (``states``, when the caller drew them already) at
+    t0 = 0: (left attractors, outcome counts, samples)."""
+    c = scene.catalogue
+    states = catalogue_states(scene) if states is None else states
     problem = body_problem(scene.system, scene.values, scene.integrator)
     left, counts = body_catalogue(problem, states, 0.0, c.match_tol, progress)
     return left, counts, len(states)

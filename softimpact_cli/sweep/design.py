@@ -17,8 +17,8 @@ import xarray as xr
 from ..analysis.catalogue import (
     Catalogue,
     catalogue_dataset,
+    catalogue_states,
     extend_catalogue,
-    sample_states,
     scene_body_attractors,
 )
 from ..analysis.design import AXES, NoRegion, design
@@ -53,10 +53,9 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
     def echo(message: str) -> None:  # each stage with the time since the start
         say(f"[{time.perf_counter() - t_start:6.1f} s] {message}")
 
-    c = scene.catalogue
-    echo(f"catalogue: searching {len(sample_states(c.box, c.grid, c.random, c.seed))} "
-         "initial conditions of one body")
-    left, counts, n_states = scene_body_attractors(scene)
+    states = catalogue_states(scene)
+    echo(f"catalogue: searching {len(states)} initial conditions of one body")
+    left, counts, n_states = scene_body_attractors(scene, states=states)
     first = pair_catalogue(scene, left, counts, n_states, a.bounds["phi"][0])
     names = first.names
     if a.target not in names:
