@@ -183,12 +183,12 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
         known = no_known_orbits(y0.shape[0])
     if recurrence is None:
         recurrence = _no_cells()
-    out = orbit.classify_near(
+    out = orbit.classified(orbit.classify_near(
         problem.advance, problem.system.rhs, problem.params, (y0, float(t0), problem.period),
         problem.kernel_args(), problem.options(),
         (s.max_periods, s.max_orbit_period, s.convergence_tol),
         known.bundle, recurrence.bundle, recurrence.table,
-    )
+    ))
     q = int(out.period)
     return Classification(
         status=int(out.status), period=q, periods_used=int(out.periods_used),
@@ -237,9 +237,9 @@ def record_trajectory(problem: Problem, state, t0: float, periods: int,
     n0 = int(orbit.first_section(float(t0), T))
     t_end = (n0 + periods) * T
     capacity = int(np.floor((t_end - t0) / dt + 1e-9)) + 1
-    out = orbit.record(problem.advance, problem.system.rhs, problem.params, (y0, float(t0), T),
-                       int(periods), problem.kernel_args(), problem.options(dt, float(t0)),
-                       capacity)
+    out = orbit.recorded(orbit.record(
+        problem.advance, problem.system.rhs, problem.params, (y0, float(t0), T), int(periods),
+        problem.kernel_args(), problem.options(dt, float(t0)), capacity))
     n = out.n_samples
     return Trajectory(int(out.status), out.sample_t[:n], out.sample_y[:n], out.section_t,
                       out.section_y, out.contacts, out.max_g, counter_dict(out.counters))

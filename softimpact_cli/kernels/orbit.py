@@ -27,7 +27,10 @@ from .codes import CONVERGED, MIXED_CELL, NO_ORBIT, OK, UNRESOLVED
 from .layout import MATRICES, MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
 from .switching import mode_of
 
-# What ``classify_near`` returns (numba hands it to Python as this named tuple):
+# What ``classify_near`` returns, as ``classified`` names it. The kernel returns plain
+# tuples, ((status, q, periods used, contacts, captured, cell_code), max_g, orbit,
+# counters): numba boxes a named tuple by calling its class, Python code during which a
+# pending SIGINT handler raises and numba's boxing crashes; a plain tuple is built in C.
 # status (status table code); period q in forcing periods (0 unless converged); periods
 # used; orbit (max(max_orbit_period, Q), dim), rows 0..q-1 the orbit's section points in
 # time order (a captured trajectory returns the known orbit); contacts, contact onsets
@@ -43,11 +46,25 @@ Classified = namedtuple("Classified", ["status", "period", "periods_used", "orbi
 # ``no_cells``.
 Known = namedtuple("Known", ["points", "periods", "max_g", "capture_tol", "capture_hits"])
 Cells = namedtuple("Cells", ["size", "hits", "visited"])
-# What ``record`` returns: sample_t (n_samples,), sample_y (n_samples, dim), samples
+# What ``record`` returns, as ``recorded`` names it (the kernel: ((status, samples
+# written), (sample_t, sample_y), (section_t, section_y, contacts, max_g), counters)):
+# sample_t (n_samples,), sample_y (n_samples, dim), samples
 # written; section_t (n_periods + 1,), section_y (n_periods + 1, dim), contacts and max_g
 # per period (row 0: before the first section); rows after a failure are NaN.
 Recorded = namedtuple("Recorded", ["status", "sample_t", "sample_y", "n_samples", "section_t",
                                    "section_y", "contacts", "max_g", "counters"])
+
+
+def classified(raw) -> Classified:
+    """``classify_near``'s plain result, named."""
+    (status, q, n_used, contacts, captured, cell_code), max_g, orbit, counters = raw
+    return Classified(status, q, n_used, orbit, contacts, max_g, counters, captured, cell_code)
+
+
+def recorded(raw) -> Recorded:
+    """``record``'s plain result, named."""
+    (status, n_written), (sample_t, sample_y), sections, counters = raw
+    return Recorded(status, sample_t, sample_y, n_written, *sections, counters)
 
 
 @njit(cache=True)
@@ -226,7 +243,7 @@ def classify(advance, rhs, p, start, surfaces, opts, limits):
 @njit(cache=True)
 def classify_near(advance, rhs, p, start, surfaces, opts, limits, known, cells, table):
     """Integrate from (t0, y0) until the section points repeat, or follow a known orbit,
-    or the budget ends, or it fails; returns a ``Classified``.
+    or the budget ends, or it fails; returns a ``Classified`` as plain tuples (see there).
 
     start = (y0, t0, T); surfaces = (A, b, relevance, contact); limits = (max_periods,
     max_orbit_period, tol) of the convergence test.
@@ -255,7 +272,7 @@ def classify_near(advance, rhs, p, start, surfaces, opts, limits, known, cells, 
     if n0 * period > t0:
         status = advance(rhs, p, y, t0, n0 * period, surfaces, opts, state, samples)
         if status != OK:
-            return Classified(status, 0, 0, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
+            return (status, 0, 0, 0, NO_ORBIT, MIXED_CELL), -np.inf, orbit, istate
     hist[0] = y
     use_cells = cells.size > 0.0 and cells.visited.shape[0] > 0
     if use_cells:
@@ -267,7 +284,7 @@ def classify_near(advance, rhs, p, start, surfaces, opts, limits, known, cells, 
         status, contacts[k], max_g[k] = one_period(advance, rhs, p, y, (n0 + n - 1) * period,
                                                    period, surfaces, opts, state, samples)
         if status != OK:
-            return Classified(status, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
+            return (status, 0, n, 0, NO_ORBIT, MIXED_CELL), -np.inf, orbit, istate
         hist[k] = y
         if use_cells:
             run, run_code = follow_cells(y, n, cells, table, run, run_code)
@@ -276,21 +293,20 @@ def classify_near(advance, rhs, p, start, surfaces, opts, limits, known, cells, 
             streak, last_k, last_j = follow_known(y, known, free, streak, last_k, last_j)
             if streak >= known.capture_hits:
                 q = known_orbit(known, last_k, last_j, orbit)
-                return Classified(CONVERGED, q, n, orbit, 0, known.max_g[last_k], istate, last_k,
-                                  MIXED_CELL)
+                return (CONVERGED, q, n, 0, last_k, MIXED_CELL), known.max_g[last_k], orbit, istate
         if run >= cells.hits:
-            return Classified(CONVERGED, 0, n, orbit, 0, -np.inf, istate, NO_ORBIT, run_code)
+            return (CONVERGED, 0, n, 0, NO_ORBIT, run_code), -np.inf, orbit, istate
         q = _repeat_period(hist, n, depth, max_orbit_period, tol)
         if q > 0:
             total, worst = repeated_orbit(hist, contacts, max_g, n, q, orbit)
-            return Classified(CONVERGED, q, n, orbit, total, worst, istate, NO_ORBIT, MIXED_CELL)
-    return Classified(UNRESOLVED, 0, max_periods, orbit, 0, -np.inf, istate, NO_ORBIT, MIXED_CELL)
+            return (CONVERGED, q, n, total, NO_ORBIT, MIXED_CELL), worst, orbit, istate
+    return (UNRESOLVED, 0, max_periods, 0, NO_ORBIT, MIXED_CELL), -np.inf, orbit, istate
 
 
 @njit(cache=True)
 def record(advance, rhs, p, start, n_periods, surfaces, opts, n_samples):
     """Integrate n_periods forcing periods from start = (y0, t0, T), writing dense samples;
-    returns a ``Recorded``.
+    returns a ``Recorded`` as plain tuples (see there).
 
     ``opts[SAMPLE_DT]``/``opts[SAMPLE_T0]`` set the sampling; ``n_samples`` is the capacity.
     Section arrays have n_periods + 1 rows (row 0 is the first section at or after t0).
@@ -324,8 +340,7 @@ def record(advance, rhs, p, start, n_periods, surfaces, opts, n_samples):
             section_y[n] = y
             contacts[n] = c
             max_g[n] = g
-    return Recorded(status, samples[0], samples[1], istate[N_SAMPLES], section_t, section_y,
-                    contacts, max_g, istate)
+    return (status, istate[N_SAMPLES]), samples, (section_t, section_y, contacts, max_g), istate
 
 
 @njit(cache=True)

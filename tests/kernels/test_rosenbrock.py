@@ -273,8 +273,9 @@ def classify(pr, method, rtol, atol, tol, max_periods=3000):
     """(status, q, periods used, orbit, contacts, max_g, counters), seconds."""
     p2 = pr.with_integrator(rtol=rtol, atol=atol)
     t0 = time.perf_counter()
-    out = orbit.classify(method, pr.system.rhs, pr.params, (Y0_PAIR.copy(), 0.0, pr.period),
-                         pr.kernel_args(), p2.options(), (max_periods, 30, tol))
+    out = orbit.classified(orbit.classify(method, pr.system.rhs, pr.params,
+                                          (Y0_PAIR.copy(), 0.0, pr.period), pr.kernel_args(),
+                                          p2.options(), (max_periods, 30, tol)))
     return tuple(out)[:7], time.perf_counter() - t0
 
 
@@ -351,8 +352,9 @@ def test_records_samples_and_sections_like_dopri5(impacting):
     out = {}
     for name, method, rtol in (("rodas4", ro.advance, 1e-10), ("dopri5", dopri5.advance, 1e-12)):
         opts = pr.with_integrator(rtol=rtol, atol=rtol * 1e-2).options(T / spp, 0.0)
-        out[name] = orbit.record(method, pr.system.rhs, pr.params, (Y0_PAIR.copy(), 0.0, T),
-                                 PERIODS, pr.kernel_args(), opts, cap)
+        out[name] = orbit.recorded(orbit.record(method, pr.system.rhs, pr.params,
+                                                (Y0_PAIR.copy(), 0.0, T), PERIODS,
+                                                pr.kernel_args(), opts, cap))
     r, d = out["rodas4"], out["dopri5"]
     assert r[0] == OK and r[3] == cap
     np.testing.assert_allclose(r[1], d[1], rtol=0, atol=1e-12)  # sample times
