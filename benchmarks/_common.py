@@ -168,3 +168,77 @@ def label_context(ctx: SweepContext, workers: int = WORKERS, chunks_per_worker: 
         start = chunks[index][1]
         codes[start:start + len(result["label"])] = result["label"]
     return [name_of(c, ctx.names) for c in codes], time.perf_counter() - t
+
+
+# ---------------------------------------------------------------- the study's planes
+
+PLANES = {  # name -> (scene file, the grid panel that replaces the scene's [grid])
+    "6d": ("configs/demo_basins.toml", None),
+    "9": ("configs/figures/fig09_bilinear_single_basins.toml", None),
+    "12a": ("configs/figures/fig12_bilinear_basins.toml", {"d": 10.0, "phi": "pi"}),
+    "13a": ("configs/figures/fig13_bilinear_basins.toml", {"d": 10.0, "phi": "pi"}),
+    "14a": ("configs/figures/fig14ab_bilinear_impacting.toml", {"k_c": 8.0}),
+}
+FRACTAL_PLANES = ("9", "12a", "13a", "14a")
+
+# The tight reference labels are compared with: dopri5 rtol 1e-11, no capture, no cells.
+TIGHT = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
+             max_periods=6000, capture_tol=0.0, cell_size=0.0)
+
+
+def plane_scene(name: str, resolution: int, integrator: dict | None = None):
+    """Figure plane ``name`` (a key of PLANES) at ``resolution`` x ``resolution``, t0 = 0,
+    with ``integrator`` keys written into its [integrator] section."""
+    import tomllib
+
+    from softimpact_cli.config.toml_text import toml_text
+
+    path, panel = PLANES[name]
+    doc = tomllib.loads((ROOT / path).read_text())
+    if panel is not None:
+        doc.pop("grid", None)
+        doc.setdefault("coupling", {}).update(panel)
+    doc["initial_conditions"]["resolution"] = [resolution, resolution]
+    doc["initial_conditions"].setdefault("t0", 0.0)
+    doc["integrator"] = {**doc.get("integrator", {}), **(integrator or {})}
+    return parse_scene(toml_text(doc), f"<figure {name}>")
+
+
+def sample_points(resolution: int, n: int, seed: int = 2024) -> np.ndarray:
+    """``n`` distinct random flat indices of a ``resolution`` x ``resolution`` plane, sorted."""
+    total = resolution * resolution
+    return np.sort(np.random.default_rng(seed).choice(total, min(n, total), replace=False))
+
+
+def tight_reference(name: str, resolution: int, picks: np.ndarray) -> list[str]:
+    """Label names of plane ``name``'s points ``picks`` at TIGHT (2 workers), cached under
+    results/bench/ in a file named by a hash of the inputs and of the classifying sources."""
+    import hashlib
+    import json
+    from dataclasses import replace
+
+    from softimpact_cli.kernels.numba_cache import source_hash
+    from softimpact_cli.sweep.runner import prepare_inputs
+
+    material = json.dumps([name, resolution, picks.tolist(), TIGHT, source_hash()])
+    key = hashlib.sha256(material.encode()).hexdigest()[:16]
+    path = ROOT / "results" / "bench" / f"reference_{name}_{key}.json"
+    if path.exists():
+        return json.loads(path.read_text())
+    scene = plane_scene(name, resolution)
+    ctx = prepare_inputs(scene, lambda s: None).context
+    tight = replace(ctx, integrator=replace(scene.integrator, **TIGHT),
+                    states=ctx.states[picks], known=None)
+    labels, wall = label_context(tight, WORKERS)
+    print(f"    tight reference of figure {name}: {len(picks)} points in {wall:.1f} s",
+          flush=True)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(labels))
+    return labels
+
+
+def label_names(ds) -> list[str]:
+    """The label name of every trajectory of a sweep dataset, in flat order."""
+    table = dict(zip(ds["label_code"].values.tolist(),
+                     (str(x) for x in ds["label_name"].values), strict=True))
+    return [table[int(c)] for c in ds["label"].values.reshape(-1)]

@@ -14,7 +14,12 @@ from _common import ROOT  # noqa: F401  (puts the repository root on sys.path)
 
 from softimpact_cli.analysis.catalogue import label_orbit
 from softimpact_cli.analysis.labels import DIVERGED, UNRESOLVED
-from tests.naive import duffing_pair_model, solve_with_events
+from tests.naive import (
+    bilinear_body_model,
+    bilinear_pair_model,
+    duffing_pair_model,
+    solve_with_events,
+)
 
 TRANSIENT = 300  # forcing periods integrated before recording
 RECORD = 60  # recorded stroboscopic points after the transient
@@ -23,17 +28,22 @@ MAX_ORBIT_PERIOD = 30
 RTOL, ATOL = 1e-8, 1e-10
 
 
+MODELS = {("duffing", 2): duffing_pair_model, ("bilinear", 2): bilinear_pair_model,
+          ("bilinear", 1): bilinear_body_model}
+
+
 def scipy_label(state, values: dict, method: str = "RK45", catalogue=None, tol: float = 1e-3,
-                transient: int = TRANSIENT, record: int = RECORD) -> str:
-    """The label of one initial state (x1, v1, x2, v2 at t = 0) of the Duffing pair at
-    ``values``: a catalogue name, ``P{q}`` / ``P{q} impacting`` without a catalogue, or
-    unresolved / diverged."""
+                transient: int = TRANSIENT, record: int = RECORD, model: str = "duffing",
+                bodies: int = 2) -> str:
+    """The label of one initial state (x1, v1, x2, v2, or x, v for one body, at t = 0) of
+    ``model`` at ``values``: a catalogue name, ``P{q}`` / ``P{q} impacting`` without a
+    catalogue, or unresolved / diverged."""
     T = 2 * np.pi / float(values["w"])
-    model = duffing_pair_model({k: v if isinstance(v, str) else float(v)  # law is a name
-                                for k, v in values.items()})
+    switched = MODELS[model, bodies]({k: v if isinstance(v, str) else float(v)  # law: a name
+                                      for k, v in values.items()})
     strobe_t = (transient + np.arange(record + 1)) * T
     try:
-        sol = solve_with_events(model.rhs, state, (0.0, strobe_t[-1]), model.switches,
+        sol = solve_with_events(switched.rhs, state, (0.0, strobe_t[-1]), switched.switches,
                                 strobe_t, rtol=RTOL, atol=ATOL, method=method,
                                 max_events=200 * (transient + record))
     except RuntimeError as exc:  # chattering gives up; a failed step is a blow-up
@@ -42,8 +52,9 @@ def scipy_label(state, values: dict, method: str = "RK45", catalogue=None, tol: 
     if not np.all(np.isfinite(pts)) or np.max(np.abs(pts)) > 1e6:
         return DIVERGED
     # in contact at any time of the recorded window: at its start, or a crossing in it
-    contact_at_start = pts[0, 0] - pts[0, 2] >= float(values["d"])
-    impacting = bool(contact_at_start or any(t > strobe_t[0] for t in sol.event_t))
+    impacting = bodies == 2 and bool(pts[0, 0] - pts[0, 2] >= float(values["d"]) or any(
+        t > strobe_t[0] and s == 0 for t, s in zip(sol.event_t, sol.event_surface,
+                                                   strict=True)))
     n = len(pts) - 1
     scale = max(1.0, float(np.max(np.abs(pts[n]))))
     period = next((q for q in range(1, MAX_ORBIT_PERIOD + 1) if n >= 2 * q and np.max(

@@ -99,3 +99,36 @@ def test_stage_clock_times_the_catalogue_of_a_sweep(contestants, tmp_path):
     run_sweep(__import__("_common").scene_at(2), tmp_path / "s.h5", workers=1, echo=clock)
     total = time.perf_counter() - t
     assert 0.0 < clock.catalogue_s() < total
+
+
+@pytest.mark.parametrize("plane", ["9", "12a"])
+def test_scipy_contestant_names_bilinear_orbits_as_the_catalogue_does(contestants, plane):
+    """The targets benchmark runs the scipy loop on the bilinear planes too (one body for
+    figure 9, the pair for 12(a), d = 10: no contact): a start on a catalogue orbit gets that
+    orbit's name."""
+    scipy_contestant, _, _ = contestants
+    from softimpact_cli.sweep.runner import prepare_catalogues
+
+    scene = __import__("_common").plane_scene(plane, 2)
+    catalogues, _ = prepare_catalogues(scene)
+    catalogue = next(iter(catalogues.values()))
+    if scene.system.bodies == 2:
+        entry = next(c for c in catalogue.combinations if c.left.stable and c.right.stable)
+        start = entry.orbit[0]
+    else:
+        entry = next(a for a in catalogue.attractors if a.stable)
+        start = entry.points[0]
+    got = scipy_contestant.scipy_label(start, dict(scene.values), "DOP853", catalogue,
+                                       scene.analysis.label_tol, transient=5, record=40,
+                                       model=scene.system.model, bodies=scene.system.bodies)
+    assert got == entry.name
+
+
+def test_plane_scenes_are_the_figures_panels():
+    common = __import__("_common")
+    assert common.plane_scene("12a", 3).values["d"] == 10.0
+    assert common.plane_scene("12a", 3).grid.size == 1  # one panel, not the figure's four
+    assert common.plane_scene("14a", 3).values["k_c"] == 8.0
+    scene = common.plane_scene("9", 5, {"rtol": 1e-6})
+    assert scene.initial_conditions.count == 25 and scene.integrator.rtol == 1e-6
+    assert scene.initial_conditions.t0 == 0.0
