@@ -146,10 +146,13 @@ def _scheduler(ctx, param, value):
                    "the label change share and wall-time ratio in the result.")
 @click.option("--dry-run", is_flag=True,
               help="Validate SCENE and print what would be computed; write nothing.")
+@click.option("--no-cache", is_flag=True,
+              help="Search the attractor catalogue afresh instead of reading it from the "
+                   "catalogue cache (as SOFTIMPACT_NO_CACHE=1 does; see `softimpact cache`).")
 @_interruptible
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
-          resolution, strict, check_n, dry_run):
+          resolution, strict, check_n, dry_run, no_cache):
     """Run SCENE (a TOML file) and write its result to HDF5.
 
     SCENE's [analysis] kind says what is computed:
@@ -177,6 +180,10 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     from .kinds import SWEEP_KINDS
     from .kinds import get as kind_of
 
+    if no_cache:  # the switch of SOFTIMPACT_NO_CACHE=1, for this command only
+        from .store.catalogue_cache import switched_off
+
+        click.get_current_context().with_resource(switched_off())
     sc = shrink_scene(load_scene(scene), quick, resolution)
     out = result_path(sc, output)
     key = "-o/--output" if output else "[output] path"
@@ -503,6 +510,41 @@ def info(result, as_json, compare):
     from .report.info_text import format_summary
 
     click.echo(format_summary(summary, ds))
+
+
+@main.group()
+def cache():
+    """The catalogue cache: one-body attractor searches kept on disk, so that a repeated
+    sweep, check, design or map of the same system does not search again. Entries are
+    keyed by everything a search depends on (parameters, [catalogue] and [integrator]
+    settings, initial states, the package's sources) and verified when read.
+    Location: $SOFTIMPACT_CACHE_DIR, else $XDG_CACHE_HOME/softimpact or
+    ~/.cache/softimpact, subfolder catalogues/. Off with SOFTIMPACT_NO_CACHE=1 or
+    `softimpact sweep --no-cache`."""
+
+
+@cache.command("info")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+def cache_info(as_json):
+    """Where the catalogue cache is, its entries and size."""
+    from .store.catalogue_cache import info as cache_state
+
+    state = cache_state()
+    if as_json:
+        click.echo(json.dumps({"location": str(state.location), "entries": state.entries,
+                               "size_bytes": state.size, "enabled": state.enabled}))
+        return
+    click.echo(state.describe())
+
+
+@cache.command("clear")
+def cache_clear():
+    """Remove every entry of the catalogue cache."""
+    from .store.catalogue_cache import cache_folder, clear
+
+    removed = clear()
+    click.echo(f"removed {removed} catalogue cache entr{'y' if removed == 1 else 'ies'} "
+               f"from {cache_folder()}")
 
 
 @main.command("reproduce")

@@ -91,12 +91,13 @@ def test_readme_command_names_existing_subcommand_options_and_files(words):
 
 
 def _cheap(words: list[str], scratch: Path, written: set[str]) -> bool:
-    """Whether a README command is cheap enough to run here (help, example, the tiny
-    trajectory scene and what it produced, scenes the README's `example` lines wrote,
+    """Whether a README command is cheap enough to run here (help, example, cache, the
+    tiny trajectory scene and what it produced, scenes the README's `example` lines wrote,
     dry runs)."""
     if any("$" in w or PLACEHOLDER.match(w) for w in words):
         return False
-    if "--help" in words or "-h" in words or words[0] == "example" or "--dry-run" in words:
+    if "--help" in words or "-h" in words or words[0] in ("example", "cache") \
+            or "--dry-run" in words:
         return True
     if words[0] == "sweep":
         return words[1] in ("configs/trajectory_duffing.toml", *written)
@@ -123,7 +124,7 @@ def test_cheap_readme_commands_run(tmp_path, monkeypatch):
             written.add(target)
         ran.append(words[0])
     # the walk-through works: help, an example written and run, a result shown and drawn
-    assert {"example", "sweep", "info", "plot"} <= set(ran)
+    assert {"example", "sweep", "info", "plot", "cache"} <= set(ran)
 
 
 def make_targets() -> set[str]:

@@ -16,8 +16,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import hashlib
+from dataclasses import asdict, dataclass
 from math import gcd
+from typing import NamedTuple
 
 import numpy as np
 
@@ -84,7 +86,8 @@ class Catalogue:
     """Attractors of the left body (and, for a pair, of the right body and combinations).
 
     counts : outcome of every sampled initial condition ('converged', 'unresolved',
-    'diverged') for the one-body search.
+    'diverged') for the one-body search. source: where that search came from
+    ("computed", or "cache <key prefix>" when read from the catalogue cache).
     """
 
     model: str
@@ -94,6 +97,7 @@ class Catalogue:
     combinations: tuple[Combination, ...]
     counts: dict[str, int]
     n_samples: int
+    source: str = "computed"
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -124,9 +128,8 @@ def require_attractors(catalogue: Catalogue, kind: str, source: str) -> None:
 def scene_catalogue(scene) -> Catalogue:
     """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...);
     one line (ConfigError) and nothing further computed when it finds no attractor."""
-    left, counts, n_states = scene_body_attractors(scene)
-    cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, left, counts,
-                           n_states)
+    search = scene_body_attractors(scene)
+    cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, *search)
     require_attractors(cat, scene.analysis.kind, str(scene.source))
     return cat
 
@@ -137,15 +140,14 @@ def catalogue_states(scene) -> np.ndarray:
     return sample_states(c.box, c.grid, c.random, c.seed)
 
 
-def scene_body_attractors(scene, progress=None, states=None) -> tuple[list, dict, int]:
+def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:
     """The one-body search every scene's catalogue starts from, over its [catalogue]
     section's initial conditions (``states``, when the caller drew them already) at
-    t0 = 0: (left attractors, outcome counts, samples)."""
+    t0 = 0, through the catalogue cache."""
     c = scene.catalogue
     states = catalogue_states(scene) if states is None else states
     problem = body_problem(scene.system, scene.values, scene.integrator)
-    left, counts = body_catalogue(problem, states, 0.0, c.match_tol, progress)
-    return left, counts, len(states)
+    return cached_body_search(problem, states, 0.0, c.match_tol, progress)
 
 
 def body_problem(system: System, values: dict, integrator: IntegratorSettings) -> Problem:
@@ -339,14 +341,16 @@ def build_catalogue(system: System, values: dict, integrator: IntegratorSettings
     """The full catalogue: left attractors, and for a pair the right ones and combinations."""
     check_bodies(system.bodies, "build_catalogue (left and right attractors)")
     problem = body_problem(system, values, integrator)
-    left, counts = body_catalogue(problem, states, t0, match_tol, progress)
-    return extend_catalogue(system, values, integrator, left, counts, len(states))
+    search = cached_body_search(problem, states, t0, match_tol, progress)
+    return extend_catalogue(system, values, integrator, *search)
 
 
 def extend_catalogue(system: System, values: dict, integrator: IntegratorSettings,
-                     left: list, counts: dict, n_states: int) -> Catalogue:
+                     left: list, counts: dict, n_states: int, source: str = "computed"
+                     ) -> Catalogue:
     """The catalogue at the parameter point ``values`` from the left body's attractors:
-    for a pair, the right body's (at ``values["phi"]``) and the combinations."""
+    for a pair, the right body's (at ``values["phi"]``) and the combinations. ``source``:
+    where the left body's search came from (:class:`BodySearch`)."""
     check_bodies(system.bodies, "extend_catalogue (left and right attractors)")
     right: list[Attractor] = []
     combos: list[Combination] = []
@@ -356,7 +360,105 @@ def extend_catalogue(system: System, values: dict, integrator: IntegratorSetting
                                  system.extra["right_phase"])
         combos = combinations(left, right)
     return Catalogue(system.model, dict(values), tuple(left), tuple(right), tuple(combos),
-                     counts, n_states)
+                     counts, n_states, source)
+
+
+# ------------------------------------------------------------------ cached search
+
+SEARCH_SOURCES = ("kernels", "systems", "analysis")  # the folders that compute a search
+
+
+class BodySearch(NamedTuple):
+    """The one-body search: attractors (numbered), outcome counts, samples searched, and
+    where it came from ("computed", or "cache <key prefix>" from the catalogue cache)."""
+
+    attractors: list[Attractor]
+    counts: dict[str, int]
+    n_states: int
+    source: str
+
+
+def cached_body_search(problem: Problem, states: np.ndarray, t0: float = 0.0,
+                       match_tol: float = 1e-3, progress=None) -> BodySearch:
+    """:func:`body_catalogue` through the catalogue cache (``store.catalogue_cache``):
+    read back bit for bit when an entry of :func:`search_key_material` verifies, else
+    searched and stored. ``progress`` gets every sample at once on a hit."""
+    from ..store import catalogue_cache
+
+    def search() -> dict[str, np.ndarray]:
+        left, counts = body_catalogue(problem, states, t0, match_tol, progress)
+        return search_arrays(BodySearch(left, counts, len(states), "computed"))
+
+    material = search_key_material(problem, states, t0, match_tol)
+    arrays, source = catalogue_cache.cached(material, search)
+    if progress is not None and source.startswith("cache"):
+        progress(len(states))
+    return search_from_arrays(arrays, source)
+
+
+def search_key_material(problem: Problem, states: np.ndarray, t0: float, match_tol: float
+                        ) -> dict:
+    """Everything a one-body search depends on, JSON-able: the body's model and parameters
+    (not d, phi, k_c, c_c: a body has none), the integrator settings, the initial states
+    (n, 2), t0, match_tol, and the sources and library versions that compute it."""
+    import numba
+
+    from ..kernels.numba_cache import source_hash
+
+    states = np.ascontiguousarray(states, dtype=np.float64)
+    return {
+        "search": "one-body attractors", "model": problem.system.model,
+        "bodies": problem.system.bodies,
+        "parameters": {k: v if isinstance(v, str) else float(v)
+                       for k, v in sorted(problem.values.items())},
+        "packed": problem.params.tolist(), "integrator": asdict(problem.integrator),
+        "states": {"shape": list(states.shape),
+                   "sha256": hashlib.sha256(states.tobytes()).hexdigest()},
+        "t0": float(t0), "match_tol": float(match_tol),
+        "sources": source_hash(folders=SEARCH_SOURCES),
+        "numpy": np.__version__, "numba": numba.__version__,
+    }
+
+
+def search_arrays(search: BodySearch) -> dict[str, np.ndarray]:
+    """A search as plain arrays: per attractor its fields, points and multipliers
+    concatenated (split by period and multiplier count), and the outcome counts."""
+    atts = search.attractors
+    dim = atts[0].points.shape[1] if atts else 2
+    return {
+        "number": np.array([a.number for a in atts], dtype=np.int64),
+        "period": np.array([a.period for a in atts], dtype=np.int64),
+        "amplitude": np.array([a.amplitude for a in atts], dtype=np.float64),
+        "share": np.array([a.share for a in atts], dtype=np.float64),
+        "residual": np.array([a.residual for a in atts], dtype=np.float64),
+        "points": np.concatenate([a.points for a in atts]) if atts else np.zeros((0, dim)),
+        "multipliers": np.concatenate([np.asarray(a.multipliers, dtype=np.complex128)
+                                       for a in atts]) if atts else np.zeros(0, complex),
+        "multiplier_count": np.array([a.multipliers.size for a in atts], dtype=np.int64),
+        "multipliers_real": np.array([not np.iscomplexobj(a.multipliers) for a in atts],
+                                     dtype=bool),
+        "count_names": np.array(list(search.counts), dtype=str),
+        "count_values": np.array(list(search.counts.values()), dtype=np.int64),
+        "n_states": np.array(search.n_states, dtype=np.int64),
+    }
+
+
+def search_from_arrays(arrays: dict[str, np.ndarray], source: str) -> BodySearch:
+    """The :class:`BodySearch` of :func:`search_arrays` (same values, bit for bit, and
+    the multipliers' dtype: eigvals gives float64 when every eigenvalue is real)."""
+    point_end = np.cumsum(arrays["period"])
+    mult_end = np.cumsum(arrays["multiplier_count"])
+    attractors = []
+    for i, number in enumerate(arrays["number"]):
+        p, m = int(arrays["period"][i]), int(arrays["multiplier_count"][i])
+        mult = arrays["multipliers"][mult_end[i] - m: mult_end[i]]
+        attractors.append(Attractor(
+            int(number), p, arrays["points"][point_end[i] - p: point_end[i]],
+            float(arrays["amplitude"][i]), mult.real if arrays["multipliers_real"][i]
+            else mult, float(arrays["share"][i]), float(arrays["residual"][i])))
+    counts = {str(k): int(v) for k, v in zip(arrays["count_names"], arrays["count_values"],
+                                             strict=True)}
+    return BodySearch(attractors, counts, int(arrays["n_states"]), source)
 
 
 # ------------------------------------------------------------------ dataset form
@@ -415,6 +517,7 @@ def catalogue_dataset(cat: Catalogue, system: System, integrator: IntegratorSett
         "multiplier": [0, 1],
     }
     attrs = {"analysis": "catalogue", "n_samples": cat.n_samples, "forcing_period": T,
+             "catalogue_source": cat.source,
              "curve_samples_per_period": CURVE_SAMPLES,
              **{f"count_{k}": v for k, v in cat.counts.items()}}
     if system.bodies == 2:

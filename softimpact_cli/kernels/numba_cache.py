@@ -42,10 +42,11 @@ PACKAGE = Path(__file__).resolve().parents[1]  # softimpact_cli/
 SOURCES = ("kernels", "systems")  # the folders whose files key the cache
 
 
-def source_hash(root: Path = PACKAGE) -> str:
-    """16 hex digits of a hash over every ``*.py`` of ``root``'s SOURCES folders."""
+def source_hash(root: Path = PACKAGE, folders: tuple[str, ...] = SOURCES) -> str:
+    """16 hex digits of a hash over every ``*.py`` of ``root``'s ``folders`` (default: the
+    SOURCES folders that key numba's cache)."""
     digest = hashlib.sha256()
-    for folder in SOURCES:
+    for folder in folders:
         for path in sorted((root / folder).glob("*.py")):
             digest.update(path.name.encode())
             digest.update(path.read_bytes())

@@ -8,7 +8,7 @@ from ..kernels.codes import CLASSIFIED_BY
 from ..kinds import KINDS
 
 SUMMARY_KEYS = (
-    "n", "n_chunks", "plan", "executor", "t0_mode",
+    "n", "n_chunks", "plan", "executor", "catalogue_source", "t0_mode",
     "analysis", "model", "bodies", "parameters", "outcome", "status_message", "period",
     "periods_used", "contacts_on_orbit", "max_penetration", "impacting", "t0",
     "integrator_resolved_method", "integrator_rtol", "integrator_atol",

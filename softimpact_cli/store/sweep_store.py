@@ -18,7 +18,6 @@ At the end the chunks are assembled into the final dataset, which atomically rep
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import json
 import os
 import shutil
@@ -31,6 +30,7 @@ import numpy as np
 import xarray as xr
 
 from ..config import ConfigError
+from .checksum import payload_digest as _digest
 from .h5netcdf_ import ENGINE, write_result
 
 PART = "chunk-{:07d}.npz"
@@ -61,15 +61,6 @@ class RunIdentity:
     @property
     def n_chunks(self) -> int:
         return -(-self.n_total // self.chunk_size)
-
-
-def _digest(identity: dict, arrays: dict[str, np.ndarray]) -> str:
-    h = hashlib.sha256(json.dumps(identity, sort_keys=True).encode())
-    for name in sorted(arrays):
-        a = np.ascontiguousarray(arrays[name])
-        h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
-        h.update(a.tobytes())
-    return h.hexdigest()
 
 
 def _orbit_arrays(orbits: dict, dim: int) -> dict[str, np.ndarray]:

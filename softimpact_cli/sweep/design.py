@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.catalogue import (
+    BodySearch,
     Catalogue,
     catalogue_dataset,
     catalogue_states,
@@ -29,12 +30,11 @@ from .plan import default_chunk_size
 from .runner import sweep_context
 
 
-def pair_catalogue(scene: Scene, left: list, counts: dict, n_states: int, phi: float
-                   ) -> Catalogue:
-    """The pair's catalogue at phi from the left body's attractors (as the sweeps build
+def pair_catalogue(scene: Scene, search: BodySearch, phi: float) -> Catalogue:
+    """The pair's catalogue at phi from the left body's search (as the sweeps build
     theirs in ``prepare_catalogues``, without searching the left body again)."""
     return extend_catalogue(scene.system, {**scene.values, "phi": phi}, scene.integrator,
-                            left, counts, n_states)
+                            *search)
 
 
 def run_design(scene: Scene, workers: int | None = None, scheduler: str | None = None,
@@ -55,8 +55,9 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
 
     states = catalogue_states(scene)
     echo(f"catalogue: searching {len(states)} initial conditions of one body")
-    left, counts, n_states = scene_body_attractors(scene, states=states)
-    first = pair_catalogue(scene, left, counts, n_states, a.bounds["phi"][0])
+    search = scene_body_attractors(scene, states=states)
+    echo(f"catalogue: {search.source}")
+    first = pair_catalogue(scene, search, a.bounds["phi"][0])
     names = first.names
     if a.target not in names:
         raise ConfigError(f"{scene.source}: [analysis] target: {a.target!r} is not in the "
@@ -72,8 +73,7 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
         """Label codes (len(points), stop - start) of samples [start, stop) per point."""
         for p in points:
             if float(p["phi"]) not in catalogues:
-                catalogues[float(p["phi"])] = pair_catalogue(scene, left, counts,
-                                                             n_states, float(p["phi"]))
+                catalogues[float(p["phi"])] = pair_catalogue(scene, search, float(p["phi"]))
         axes = {x: tuple(float(p[x]) for p in points) for x in AXES}
         grid = Grid({**axes, "t0": (0.0,) * len(points)}, AXES, panels=True)
         batch = {float(p["phi"]): catalogues[float(p["phi"])] for p in points}
@@ -93,11 +93,12 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
         return labels.reshape(len(points), stop - start)
 
     try:
-        ds = design(scene.system, dict(scene.values), left, a, ic.count, evaluate, echo)
+        ds = design(scene.system, dict(scene.values), search.attractors, a, ic.count,
+                    evaluate, echo)
     except NoRegion as exc:
         raise ConfigError(f"{scene.source}: [analysis] target: {exc}") from None
     pick = {x: float(ds[f"point_{x}"].values[0]) for x in AXES}
-    cat = pair_catalogue(scene, left, counts, n_states, pick["phi"])
+    cat = pair_catalogue(scene, search, pick["phi"])
     ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
                   combine_attrs="override", compat="override", join="exact")
     ds.attrs.update(provenance(scene, started, time.time(), time.perf_counter() - t_start))
@@ -109,5 +110,5 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
                      "forcing_period": 2 * np.pi / float(scene.values["w"]),
                      "sample_box": ", ".join(f"{k}=[{lo:g}, {hi:g}]"
                                              for k, (lo, hi) in ic.box.items()),
-                     "sample_seed": ic.seed})
+                     "sample_seed": ic.seed, "catalogue_source": search.source})
     return ds

@@ -38,13 +38,12 @@ def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ..
     """
     system = scene.system
     check_bodies(system.bodies, "prepare_catalogues (a body or a pair's combinations)")
-    left, counts, n_states = scene_body_attractors(scene, progress)
+    search = scene_body_attractors(scene, progress)
     catalogues = {}
     phis = scene.grid.distinct("phi") if system.bodies == 2 else (0.0,)
     for phi in phis:
         values = {**scene.values, "phi": phi} if system.bodies == 2 else dict(scene.values)
-        catalogues[float(phi)] = extend_catalogue(system, values, scene.integrator, left,
-                                                  counts, n_states)
+        catalogues[float(phi)] = extend_catalogue(system, values, scene.integrator, *search)
     names = next(iter(catalogues.values())).names
     return catalogues, names
 
@@ -112,6 +111,7 @@ def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
     if kind_of(scene.analysis.kind).needs_attractors:  # stop before any chunk or file
         require_attractors(next(iter(catalogues.values())), scene.analysis.kind,
                            str(scene.source))
+    echo(f"catalogue search: {next(iter(catalogues.values())).source}")
     echo(f"catalogue: {len(names)} solutions: {', '.join(names)}" if names else
          "catalogue: no non-impacting solution found (every label will be impacting, "
          "unresolved or diverged)")
@@ -141,7 +141,9 @@ def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: di
     if after is not None:
         ds = after(ds, scene, inputs.first)
     catalogue_vars = catalogue_dataset(inputs.first, scene.system, scene.integrator)
-    return xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
+    ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
+    ds.attrs["catalogue_source"] = inputs.first.source  # "computed" or "cache <key>"
+    return ds
 
 
 MAX_ROUNDS = 4  # rounds of chunk computing (later ones redo parts lost during the run)

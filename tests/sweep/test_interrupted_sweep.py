@@ -110,7 +110,8 @@ def check_one_line(stderr: str, name: str) -> str:
 
 
 def test_sigint_during_the_catalogue_keeps_nothing(tmp_path):
-    run = Sweep(tmp_path, "--workers", "2")
+    # --no-cache: an earlier test's catalogue of this scene would end the search at once
+    run = Sweep(tmp_path, "--workers", "2", "--no-cache")
     run.wait_for(run.in_catalogue(), "the catalogue")
     time.sleep(0.5)  # inside the catalogue search (numba compiling or running)
     assert run.send(signal.SIGINT) == 130
