@@ -12,7 +12,7 @@ import math
 import os
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -58,7 +58,7 @@ class IntegratorSettings:
     convergence_tol: float = 1e-6
     capture_tol: float = 1e-2
     capture_hits: int = 3
-    cell_size: float = 0.0
+    cell_size: float = 0.02  # benchmarks/bench_settings.py: safe on the study's five planes
     cell_hits: int = 8
     divergence_bound: float = 1e6
     max_steps_per_period: int = 200_000
@@ -218,6 +218,8 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     system, values = _read_system(source, doc)
     _read_coupling(source, doc, system, values)
     integrator = _read_integrator(source, doc)
+    if system.dim > MAX_CELL_DIM and "cell_size" not in doc.get("integrator", {}):
+        integrator = replace(integrator, cell_size=0.0)  # the default where cells cannot go
     if integrator.cell_size > 0.0 and system.dim > MAX_CELL_DIM:
         raise ConfigError(f"{source}: [integrator] cell_size: recurrence cells hold states of "
                           f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "

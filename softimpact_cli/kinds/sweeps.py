@@ -59,10 +59,9 @@ def shrink(analysis, grid, axis: int):
 def plan(scene, workers=None, chunk_size=None) -> str:
     import os
 
-    from ..sweep.plan import Plan, default_chunk_size
+    from ..sweep.plan import Plan, chunk_size_for
 
-    n_total = scene.grid.size * scene.initial_conditions.count
-    size = chunk_size or default_chunk_size(n_total, workers or os.cpu_count() or 1)
+    size = chunk_size_for(scene, chunk_size, workers or os.cpu_count() or 1)
     return f"{scene.analysis.kind}: " + Plan(scene, size).describe()
 
 

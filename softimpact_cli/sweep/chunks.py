@@ -26,6 +26,10 @@ from ..kernels.codes import (
 from ..systems import get_system
 
 CAPTURE_MARGIN = 10.0  # d - d_crit must exceed this many capture radii
+# Recurrence cells start an empty table at every grid point and every CELL_BLOCK flat
+# indices, and chunks hold whole blocks (plan.chunk_size_for): labels do not depend on how a
+# run is cut into chunks. 256: the table sizes bench_settings.py measured the cells with.
+CELL_BLOCK = 256
 
 RESULT_FIELDS = {  # name -> dtype of the per-trajectory arrays a chunk returns
     "label": np.int32,
@@ -93,8 +97,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
 
     Returns per-trajectory arrays (RESULT_FIELDS) and ``orbits``: for each (grid point,
     label code) first seen in this chunk, (flat index, section points (q, dim)). With
-    recurrence cells (``cell_size > 0``) each grid point of the chunk starts an empty
-    table, so a chunk's result depends only on its own index range.
+    recurrence cells (``cell_size > 0``) each grid point and each CELL_BLOCK of flat
+    indices starts an empty table, so a result does not depend on the chunk boundaries
+    as long as they fall on blocks.
     """
     n = stop - start
     out = {k: np.zeros(n, dtype=t) for k, t in RESULT_FIELDS.items()}
@@ -116,10 +121,10 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             problem = Problem(system, values, s)
             catalogue = ctx.catalogues[float(values.get("phi", 0.0))]
             known = ctx.known_orbits(values)
-            if s.cell_size > 0.0:
-                cells = RecurrenceCells(s.cell_size, s.cell_hits, s.max_periods)
-            summary = {}
             current = point
+        if s.cell_size > 0.0 and (k == 0 or ic == 0 or flat % CELL_BLOCK == 0):
+            cells = RecurrenceCells(s.cell_size, s.cell_hits, s.max_periods)
+            summary = {}  # what cells name comes from this table's trajectories only
         t0 = grid_t0 if ctx.t0 is None else float(ctx.t0[ic])
         cls = classify_state(problem, ctx.states[ic], t0, known, cells)
         how = BY_KNOWN_ORBIT if cls.captured != NO_ORBIT else BY_OWN_REPEAT

@@ -25,6 +25,7 @@ from ..analysis.catalogue import (
 from ..analysis.design import AXES, NoRegion, design
 from ..config import ConfigError, Grid, Scene
 from ..store.provenance import provenance
+from .chunks import CELL_BLOCK
 from .executors import make_executor
 from .plan import default_chunk_size
 from .runner import sweep_context
@@ -81,7 +82,8 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
         context = replace(context, states=context.states[start:stop],
                           t0=context.t0[start:stop])
         total = len(points) * (stop - start)
-        size = default_chunk_size(total, getattr(executor, "workers", 8))
+        block = CELL_BLOCK if scene.integrator.cell_size > 0.0 else 1
+        size = default_chunk_size(total, getattr(executor, "workers", 8), block)
         chunks = [(i, lo, min(lo + size, total)) for i, lo in enumerate(range(0, total, size))]
         labels = np.empty(total, dtype=np.int32)
         tick = progress(total) if progress else None

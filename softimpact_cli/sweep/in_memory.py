@@ -19,7 +19,7 @@ from ..config import Scene
 from ..store.provenance import history_line, provenance
 from .chunks import RESULT_FIELDS
 from .executors import make_executor
-from .plan import Plan, default_chunk_size
+from .plan import Plan, chunk_size_for
 from .runner import keep_first_orbits, labelled_dataset, prepare_inputs
 
 
@@ -38,8 +38,7 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
     started = time.time()
     t0 = time.perf_counter()
     executor = make_executor(workers, scheduler)
-    n_total = scene.grid.size * scene.initial_conditions.count
-    size = chunk_size or default_chunk_size(n_total, getattr(executor, "workers", 8))
+    size = chunk_size_for(scene, chunk_size, getattr(executor, "workers", 8))
     plan = Plan(scene, size)
     plan.check_memory(str(scene.source))
     echo(plan.describe())

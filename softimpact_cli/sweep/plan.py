@@ -117,6 +117,21 @@ def _size(n: float) -> str:
     return f"{n:.1f} PiB"
 
 
-def default_chunk_size(n_total: int, workers: int) -> int:
-    """About 16 chunks per worker, between 16 and 2000 trajectories each."""
-    return int(np.clip(n_total // max(1, 16 * workers), 16, 2000))
+def default_chunk_size(n_total: int, workers: int, block: int = 1) -> int:
+    """About 16 chunks per worker, between 16 and 2000 trajectories each, rounded up to a
+    multiple of ``block``."""
+    size = int(np.clip(n_total // max(1, 16 * workers), 16, 2000))
+    return -(-size // block) * block
+
+
+def chunk_size_for(scene: Scene, given: int | None, workers: int) -> int:
+    """The chunk size of a sweep: ``given`` (--chunk-size) or the default for ``workers``,
+    rounded up to a multiple of CELL_BLOCK when the scene uses recurrence cells, so that
+    chunks hold whole blocks and the labels do not depend on the chunk size or on the
+    number of workers (``chunks.run_chunk`` starts a table at every block)."""
+    from .chunks import CELL_BLOCK
+
+    block = CELL_BLOCK if scene.integrator.cell_size > 0.0 else 1
+    if given:
+        return -(-given // block) * block
+    return default_chunk_size(scene.grid.size * scene.initial_conditions.count, workers, block)

@@ -27,7 +27,7 @@ from ..store.sweep_store import DamagedHeader, DamagedPart, RunIdentity, SweepSt
 from ..systems.base import check_bodies
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
-from .plan import Plan, default_chunk_size
+from .plan import Plan, chunk_size_for
 from .result import sweep_dataset
 
 
@@ -230,8 +230,7 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     session = time.time()
     store = SweepStore(out)
     executor = make_executor(workers, scheduler)
-    n_total = scene.grid.size * scene.initial_conditions.count
-    size = chunk_size or default_chunk_size(n_total, getattr(executor, "workers", 8))
+    size = chunk_size_for(scene, chunk_size, getattr(executor, "workers", 8))
     header = None
     if resume:
         try:

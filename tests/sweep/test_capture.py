@@ -17,6 +17,8 @@ model = "{model}"
 [coupling]
 d = {d}
 phi = {phi}
+[integrator]
+cell_size = 0.0  # capture alone against full convergence
 [analysis]
 kind = "basins"
 [initial_conditions]

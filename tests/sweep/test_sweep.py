@@ -22,6 +22,8 @@ SCENE = """
 model = "duffing"
 [coupling]
 d = 6.0
+[integrator]
+cell_size = 0.0  # chunks of a few trajectories here; cells take whole blocks (test_chunks)
 [analysis]
 kind = "basins"
 [grid]
