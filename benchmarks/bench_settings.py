@@ -46,6 +46,8 @@ CANDIDATES = {  # name -> [integrator] keys over the defaults
     "auto 1e-6 cells .02x8": dict(rtol=1e-6, atol=1e-8, cell_size=0.02, cell_hits=8),
     "no capture": dict(capture_tol=0.0),
     "auto 1e-10": dict(rtol=1e-10, atol=1e-12),
+    "auto 1e-9": dict(rtol=1e-9, atol=1e-11),
+    "convergence 1e-9": dict(convergence_tol=1e-9),
     "dopri5 1e-8": dict(method="dopri5"),
 }
 SPREAD = {  # tighter than the reference still
