@@ -165,7 +165,7 @@ def _sweep_in_memory(sc: Scene, workers, scheduler, chunk_size, echo, bar, verif
     from .sweep.verification import disabled_status, verify_sweep
 
     ds = sweep_in_memory(sc, workers, scheduler, chunk_size, echo, bar)
-    if not (verify and sc.verification.enabled):
+    if not (verify and (sc.verification is None or sc.verification.enabled)):
         ds.attrs["verify_status"] = disabled_status(
             "--no-verify" if not verify else "[verification] enabled = false")
         return ds

@@ -185,6 +185,9 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     from .kinds import SWEEP_KINDS
     from .kinds import get as kind_of
 
+    if check_n and no_verify:
+        raise ConfigError(f"--check {check_n} and --no-verify: choose one (--check N sets "
+                          "how many trajectories the verification reruns)")
     sc = shrink_scene(load_scene(scene), quick, resolution)
     out = result_path(sc, output)
     key = "-o/--output" if output else "[output] path"

@@ -150,7 +150,9 @@ def verify_sweep(scene: Scene, ds: xr.Dataset, redo: Callable[[Scene, int], xr.D
     ``sample`` overrides the [verification] sample size (``--check N``). Returns the
     final dataset with the ``verify_*`` attributes.
     """
-    settings = scene.verification
+    from ..config import VerificationSettings
+
+    settings = scene.verification or VerificationSettings()  # a Scene built by hand
     total = int(ds.attrs["n"])
     n = min(sample if sample is not None else settings.sample_size(total), total)
     started = time.perf_counter()
@@ -283,7 +285,7 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
             ds = open_result(out)
         else:
             ds = run_sweep(scene, out, resume=resume, echo=echo, **run_options)
-        if not (verify and scene.verification.enabled):
+        if not (verify and (scene.verification is None or scene.verification.enabled)):
             by = "--no-verify" if not verify else "[verification] enabled = false"
             add_attributes(out, {"verify_status": disabled_status(by)})
             ds.attrs["verify_status"] = disabled_status(by)

@@ -140,6 +140,8 @@ def test_no_verify_and_disabled_are_recorded(tmp_path):
     assert si.open_result(out).attrs["verify_status"] == \
         "not verified (disabled by --no-verify)"
     assert "label error: not verified (disabled by --no-verify)" in result.output
+    both, _ = sweep_cli(tmp_path, PLANE, "--check", "10", "--no-verify", "--overwrite")
+    assert both.exit_code == 2 and "--check 10 and --no-verify: choose one" in both.output
     off = PLANE + "[verification]\nenabled = false\n"
     ds = si.run(off, workers=1)
     assert ds.attrs["verify_status"] == \
