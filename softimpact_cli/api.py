@@ -116,7 +116,8 @@ def _progress(progress: bool | Callable | None, unit: str) -> Callable | None:
 def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
         workers: int | None = None, scheduler: str | None = None,
         chunk_size: int | None = None, progress: bool | Callable = False,
-        echo: Callable[[str], None] | None = None) -> xr.Dataset:
+        echo: Callable[[str], None] | None = None, verify: bool = True,
+        verify_sample: int | None = None) -> xr.Dataset:
     """Run any scene and return its ``xarray.Dataset``; no file is read or written.
 
     ``scene``: a Scene or anything :func:`load_scene` takes. ``quick`` and
@@ -127,27 +128,57 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     memory (``chunk_size`` trajectories each; not resumable: use :func:`sweep` for
     that) and return the dataset their result file would hold. ``progress``: False
     (default), True for a ``tqdm.auto`` bar, or a factory as in the module docstring.
+
+    ``verify`` (default True): a sweep reruns a random sample at tight settings, bounds
+    its label error and, over the [verification] threshold, redoes itself at tighter
+    settings (``sweep.verification``); its ``verify_*`` attributes say what was found.
+    ``verify_sample``: the number rerun (default from [verification]). ``verify=False``
+    records "not verified (disabled by --no-verify)".
     """
     from .kinds import get as kind_of
 
+    _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
     kind = kind_of(sc.analysis.kind)
     bar = _progress(progress, kind.progress_unit)
     if kind.sweep:
-        from .sweep import sweep_in_memory
-
-        return sweep_in_memory(sc, workers, scheduler, chunk_size, echo or _silent, bar)
+        return _sweep_in_memory(sc, workers, scheduler, chunk_size, echo or _silent, bar,
+                                verify, verify_sample)
     from .kinds.run import run_scene
 
     return run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
                      echo=echo or _silent)
 
 
+def _check_verify_sample(verify_sample) -> None:
+    if verify_sample is not None and (isinstance(verify_sample, bool) or
+                                      not isinstance(verify_sample, int) or verify_sample < 1):
+        raise ConfigError(f"verify_sample: must be a whole number >= 1 (or None: from "
+                          f"[verification]), got {verify_sample!r}")
+
+
+def _sweep_in_memory(sc: Scene, workers, scheduler, chunk_size, echo, bar, verify: bool,
+                     verify_sample: int | None) -> xr.Dataset:
+    """A sweep kind run in memory, then verified (or recorded as not verified)."""
+    from .sweep import sweep_in_memory
+    from .sweep.executors import make_executor
+    from .sweep.verification import disabled_status, verify_sweep
+
+    ds = sweep_in_memory(sc, workers, scheduler, chunk_size, echo, bar)
+    if not (verify and (sc.verification is None or sc.verification.enabled)):
+        ds.attrs["verify_status"] = disabled_status(
+            "--no-verify" if not verify else "[verification] enabled = false")
+        return ds
+    return verify_sweep(sc, ds, lambda tighter, _: sweep_in_memory(
+        tighter, workers, scheduler, chunk_size, echo, bar), verify_sample,
+        make_executor(workers, scheduler), echo)
+
+
 def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: bool = False,
           overwrite: bool = False, workers: int | None = None, scheduler: str | None = None,
           chunk_size: int | None = None, quick: bool = False, resolution: int | None = None,
-          progress: bool | Callable = False, echo: Callable[[str], None] | None = None
-          ) -> xr.Dataset:
+          progress: bool | Callable = False, echo: Callable[[str], None] | None = None,
+          verify: bool = True, verify_sample: int | None = None) -> xr.Dataset:
     """Run a scene into its result file ``out`` (default: its [output] path), as
     ``softimpact sweep`` does, and return the complete dataset.
 
@@ -156,10 +187,15 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     nothing to resume it starts afresh). Other kinds run whole and write at the end
     (``resume`` is refused). An existing result needs ``overwrite=True``. The other
     options are those of :func:`run`.
+
+    A sweep is verified after it completes (``verify``, ``verify_sample``: see
+    :func:`run`); a redo at tighter settings is written beside ``out`` and replaces it
+    when done, and ``resume=True`` also finishes an interrupted verification.
     """
     from .kinds import SWEEP_KINDS
     from .kinds import get as kind_of
 
+    _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
     target = result_path(sc, None if out is None else str(out))
     check_writable(target, str(sc.source) if out is None else "sweep", "[output] path"
@@ -168,10 +204,11 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     bar = _progress(progress, kind.progress_unit)
     echo = echo or _silent
     if kind.sweep:
-        from .sweep import run_sweep
+        from .sweep.verification import sweep_verified
 
-        return run_sweep(sc, target, workers=workers, scheduler=scheduler, resume=resume,
-                         overwrite=overwrite, chunk_size=chunk_size, echo=echo, progress=bar)
+        return sweep_verified(sc, target, verify=verify, sample=verify_sample, resume=resume,
+                              echo=echo, workers=workers, scheduler=scheduler,
+                              overwrite=overwrite, chunk_size=chunk_size, progress=bar)
     if resume:
         raise ConfigError(f"{sc.source}: resume is for sweeps (kinds "
                           f"{', '.join(SWEEP_KINDS)}); a {kind.name} reruns whole")

@@ -140,10 +140,13 @@ def _scheduler(ctx, param, value):
 @click.option("--strict", is_flag=True,
               help="Refuse to start when a fixed RK4 step is unstable, and exit with status "
                    "3 (after writing the result) when over 5% of trajectories are unresolved "
-                   "or diverged or the catalogue is empty (instead of warning).")
+                   "or diverged, the catalogue is empty, or the label error stays over the "
+                   "[verification] threshold (instead of warning).")
 @click.option("--check", "check_n", type=click.IntRange(min=1), default=None, metavar="N",
-              help="Afterwards rerun N random trajectories at tightened settings and store "
-                   "the label change share and wall-time ratio in the result.")
+              help="Verify a sweep on N random trajectories (default: [verification] "
+                   "share of them, min_sample..max_sample).")
+@click.option("--no-verify", is_flag=True,
+              help="Do not verify a sweep (recorded in the result as not verified).")
 @click.option("--dry-run", is_flag=True,
               help="Validate SCENE and print what would be computed; write nothing.")
 @click.option("--no-cache", is_flag=True,
@@ -152,7 +155,7 @@ def _scheduler(ctx, param, value):
 @_interruptible
 @_user_errors
 def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quiet, quick,
-          resolution, strict, check_n, dry_run, no_cache):
+          resolution, strict, check_n, no_verify, dry_run, no_cache):
     """Run SCENE (a TOML file) and write its result to HDF5.
 
     SCENE's [analysis] kind says what is computed:
@@ -171,6 +174,11 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     configs/figures/ (every figure of the study); `softimpact example KIND` prints a
     minimal commented scene of each kind.
 
+    A sweep (basins, stability, map) is verified when it completes: a random sample is
+    rerun at tight settings and its label disagreement stored with a 95% interval; over
+    the [verification] threshold it is redone at tighter settings (README: "How right
+    is a result"). --strict: exit status 3 when it stays over the threshold.
+
     \b
     Examples:
       softimpact sweep configs/demo_basins.toml -o results/demo.h5
@@ -180,6 +188,9 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     from .kinds import SWEEP_KINDS
     from .kinds import get as kind_of
 
+    if check_n and no_verify:
+        raise ConfigError(f"--check {check_n} and --no-verify: choose one (--check N sets "
+                          "how many trajectories the verification reruns)")
     if no_cache:  # the switch of SOFTIMPACT_NO_CACHE=1, for this command only
         from .store.catalogue_cache import switched_off
 
@@ -209,12 +220,16 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
 
         ds = run_to_file(sc, out, workers=workers, scheduler=scheduler, resume=resume,
                          overwrite=overwrite, chunk_size=chunk_size, echo=echo,
-                         progress=None if quiet else _progress_bar)
+                         progress=None if quiet else _progress_bar, verify=not no_verify,
+                         verify_sample=check_n)
         click.echo(f"{sc.analysis.kind}: {ds.attrs['n']} trajectories "
                    f"({ds.attrs['wall_s']:.1f} s) -> {out}")
-        if check_n:
-            _store_check(sc, out, check_n)
+        over = _report_verification(ds)
         _warn_outcomes(ds, sc, strict)
+        if over and strict:
+            from .report.outcomes import STRICT_STATUS
+
+            sys.exit(STRICT_STATUS)
         return
     if resume:
         raise ConfigError(f"{scene}: --resume is for sweeps (kinds {', '.join(SWEEP_KINDS)}); "
@@ -296,13 +311,21 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
     _warn_outcomes(_run_whole(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
 
 
-def _store_check(scene, out: Path, sample: int) -> None:
-    from .kinds.check import check_scene, report_attributes
-    from .store import add_attributes
+def _report_verification(ds) -> bool:
+    """Print the label-error line; a note when inconclusive, a warning when over the
+    threshold. Returns whether it is over the threshold."""
+    from .report.verification import verification_line
+    from .sweep.verification import INCONCLUSIVE, OVER
 
-    report = check_scene(scene, sample, result=_open(str(out)))
-    add_attributes(out, report_attributes(report))
-    click.echo(_format_check(report))
+    click.echo(verification_line(ds.attrs))
+    status = ds.attrs["verify_status"]
+    if status == INCONCLUSIVE:
+        click.echo(f"softimpact: note: label error inconclusive: {ds.attrs['verify_message']}",
+                   err=True)
+    if status == OVER:
+        click.echo(f"softimpact: warning: label error over the threshold: "
+                   f"{ds.attrs['verify_message']}", err=True)
+    return status == OVER
 
 
 def _format_check(report: dict) -> str:
@@ -421,6 +444,8 @@ def _draw(result: str, output: str, dpi: int, kind: str, draw, complete: bool = 
 
 def _plot_option(option) -> click.Option:
     """A click option from a kind's PlotOption (``kinds.PlotOption``)."""
+    if option.kind == "flag":
+        return click.Option([option.flag, option.keyword], is_flag=True, help=option.help)
     types = {"int>=1": click.IntRange(min=1), "choice": click.Choice(list(option.choices)),
              "text": None}
     return click.Option([option.flag, option.keyword], type=types[option.kind],

@@ -6,7 +6,8 @@ key, and what is allowed. Unknown sections and keys are errors, never ignored.
 
 - ``reader``: the table reader and the error type;
 - ``scene``: [system], [coupling], [integrator], [analysis], [output] and the Scene;
-- ``sweep``: [grid], [initial_conditions] and [catalogue] for sweeps.
+- ``sweep``: [grid], [initial_conditions] and [catalogue] for sweeps;
+- ``verification``: [verification], how a sweep measures its label error.
 """
 
 from .reader import ConfigError, check_writable
@@ -24,8 +25,10 @@ from .scene import (
     result_path,
 )
 from .sweep import GRID_AXES, GRID_UNITS, CatalogueSettings, Grid, InitialConditions
+from .verification import VerificationSettings
 
 __all__ = ["ANALYSIS_KINDS", "GRID_AXES", "GRID_UNITS", "SWEEP_KINDS", "CatalogueAnalysis",
            "CatalogueSettings", "ConfigError", "Grid", "InitialConditions",
            "IntegratorSettings", "Scene", "SweepAnalysis", "TrajectoryAnalysis",
+           "VerificationSettings",
            "check_writable", "load_scene", "parse_scene", "quick", "result_path"]

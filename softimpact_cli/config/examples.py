@@ -73,6 +73,13 @@ resolution = [40, 40]
 grid = 8
 random = 50
 
+[verification]             # every sweep measures its label error (these are the defaults)
+share = 0.01               # rerun this fraction of the starts at tight settings,
+min_sample = 50            # at least this many, at most max_sample
+max_sample = 2000
+threshold = 0.005          # over this (95% upper bound), redo the sweep tighter ...
+tighten = true             # ... unless false: then keep it and warn
+
 [output]
 path = "results/example_basins.h5"
 """,

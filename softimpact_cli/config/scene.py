@@ -40,6 +40,7 @@ from .sweep import (
     Grid,
     InitialConditions,
 )
+from .verification import VerificationSettings, read_verification
 
 METHODS = (*METHOD_MODULES, *ALIASES)  # the kernels' registry
 
@@ -84,6 +85,7 @@ class Scene:
     grid: Grid | None = None
     initial_conditions: InitialConditions | None = None
     catalogue: CatalogueSettings | None = None
+    verification: VerificationSettings | None = None  # sweep kinds only
 
     @property
     def sha256(self) -> str:
@@ -196,7 +198,7 @@ def _read_output(source: str, doc: dict, base: Path) -> Path:
 
 
 SECTIONS = ("system", "coupling", "integrator", "analysis", "output", "grid",
-            "initial_conditions", "catalogue")
+            "initial_conditions", "catalogue", "verification")
 
 
 def parse_scene(text: str, source: str = "<string>") -> Scene:
@@ -235,7 +237,19 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     return Scene(source=source, text=text, system=system, values=values,
                  integrator=integrator, analysis=analysis, output=output,
                  sections={k: dict(v) for k, v in doc.items()}, grid=grid,
-                 initial_conditions=initial, catalogue=catalogue)
+                 initial_conditions=initial, catalogue=catalogue,
+                 verification=_read_verification(source, doc, analysis.kind))
+
+
+def _read_verification(source: str, doc: dict, kind: str) -> VerificationSettings | None:
+    """[verification] of a sweep kind (its defaults when absent); refused elsewhere."""
+    if KINDS[kind].sweep:
+        return read_verification(source, doc)
+    if "verification" in doc:
+        raise ConfigError(f"{source}: [verification]: only for the analyses "
+                          f"{', '.join(SWEEP_KINDS)} (sweeps of labelled trajectories); "
+                          f"kind is {kind!r}")
+    return None
 
 
 def _check_axis(system: System, axis: str, value: float, period: float) -> str | None:

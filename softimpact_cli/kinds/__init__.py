@@ -67,7 +67,7 @@ class Sections:
 class PlotOption:
     """A command-line option of ``softimpact plot <kind>``, passed to the figure function
     as the keyword ``keyword``. ``kind``: "int>=1" (a positive integer), "choice"
-    (one of ``choices``) or "text"."""
+    (one of ``choices``), "text" or "flag" (present or not)."""
 
     flag: str
     keyword: str

@@ -1,11 +1,12 @@
 """Error against run time: rerun (part of) a scene at tighter settings and compare.
 
 Tightened settings: rtol and atol / 100, convergence_tol / 10, twice the period budget,
-4x the RK4 steps, no capture near known orbits. Sweeps compare the labels of a random
-subset of trajectories (after a sweep, its stored labels against the tightened rerun);
-the share that changes is the estimated label error. Critical-distance scenes compare
-d_crit at a subset of phases; bifurcation scenes compare destruction points. Each
-report carries both wall times and their ratio.
+4x the RK4 steps, no capture near known orbits, no recurrence cells. Sweeps compare the
+labels of a random subset of trajectories (after a sweep, its stored labels against the
+tightened rerun); the share that changes is the estimated label error (the default
+verification of every sweep, ``sweep.verification``, is built on it). Critical-distance
+scenes compare d_crit at a subset of phases; bifurcation scenes compare destruction
+points. Each report carries both wall times and their ratio.
 """
 
 from __future__ import annotations
@@ -19,10 +20,11 @@ from ..config import IntegratorSettings, Scene
 
 
 def tightened(s: IntegratorSettings) -> IntegratorSettings:
-    """The reference settings; capture off, so that its error is measured too."""
+    """The reference settings; capture and recurrence cells off, so that their error is
+    measured too."""
     return replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
                    convergence_tol=s.convergence_tol / 10, max_periods=2 * s.max_periods,
-                   steps_per_period=4 * s.steps_per_period, capture_tol=0.0)
+                   steps_per_period=4 * s.steps_per_period, capture_tol=0.0, cell_size=0.0)
 
 
 def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> dict:
@@ -41,39 +43,67 @@ def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> 
     return kind.check(scene, sample, seed, result)
 
 
-def check_sweep(scene: Scene, sample: int, seed: int, result=None) -> dict:
-    from ..analysis.labels import name_of
-    from ..sweep.chunks import run_chunk
-    from ..sweep.runner import prepare_catalogues, sweep_context
+def sample_indices(total: int, sample: int, seed: int) -> np.ndarray:
+    """``min(sample, total)`` distinct flat indices of a sweep's trajectories (plan
+    order), drawn at random with ``seed``, sorted."""
+    rng = np.random.default_rng(seed)
+    return np.sort(rng.choice(total, size=min(sample, total), replace=False))
 
-    catalogues, names = prepare_catalogues(scene)
+
+def rerun_labels(scene: Scene, settings: IntegratorSettings, catalogues: dict,
+                 names: tuple[str, ...], picks: np.ndarray, executor=None
+                 ) -> tuple[np.ndarray, float]:
+    """(label codes, wall s) of the trajectories at flat indices ``picks`` run at
+    ``settings``, each in a one-trajectory chunk (so recurrence cells never carry over
+    from one to the next), on ``executor`` (default: this process)."""
+    from ..sweep.executors import LocalExecutor
+    from ..sweep.runner import sweep_context
+
     ic = scene.initial_conditions
     t0 = ic.random_t0(2 * np.pi / float(scene.values["w"])) if ic.t0 is None else None
-    base = sweep_context(scene, catalogues, names, t0)
-    tight = replace(base, integrator=tightened(scene.integrator))
-    total = scene.grid.size * ic.count
-    rng = np.random.default_rng(seed)
-    picks = np.sort(rng.choice(total, size=min(sample, total), replace=False))
-    walls = {}
-    labels = {}
-    runs = (("scene", base), ("tight", tight))
-    if result is not None:
-        labels["scene"] = result["label"].values.ravel()[picks]
-        walls["scene"] = float(result.attrs["wall_s"]) * picks.size / total
-        runs = runs[1:]
-    for key, ctx in runs:
-        start = time.perf_counter()
-        labels[key] = np.array([run_chunk(ctx, int(i), int(i) + 1)["label"][0] for i in picks])
-        walls[key] = time.perf_counter() - start
-    changed = labels["scene"] != labels["tight"]
+    context = sweep_context(replace(scene, integrator=settings), catalogues, names, t0)
+    chunks = [(j, int(i), int(i) + 1) for j, i in enumerate(picks)]
+    labels = np.empty(len(picks), dtype=np.int64)
+    start = time.perf_counter()
+    for j, result in (executor or LocalExecutor(1)).run(context, chunks):
+        labels[j] = result["label"][0]
+    return labels, time.perf_counter() - start
+
+
+def label_changes(before: np.ndarray, after: np.ndarray, names: tuple[str, ...]
+                  ) -> dict[str, int]:
+    """{"A -> B": count} of the positions where the label codes differ."""
+    from ..analysis.labels import name_of
+
     changes: dict[str, int] = {}
-    for a, b in zip(labels["scene"][changed], labels["tight"][changed], strict=True):
+    for a, b in zip(before[before != after], after[before != after], strict=True):
         key = f"{name_of(a, names)} -> {name_of(b, names)}"
         changes[key] = changes.get(key, 0) + 1
+    return changes
+
+
+def check_sweep(scene: Scene, sample: int, seed: int, result=None, executor=None) -> dict:
+    """Labels at the scene's settings (``result``'s stored labels when given) against
+    labels at ``tightened`` settings, on ``sample`` random trajectories."""
+    from ..sweep.runner import prepare_catalogues
+
+    catalogues, names = prepare_catalogues(scene)
+    total = scene.grid.size * scene.initial_conditions.count
+    picks = sample_indices(total, sample, seed)
+    if result is not None:
+        scene_labels = result["label"].values.ravel()[picks]
+        scene_wall = float(result.attrs["wall_s"]) * picks.size / total
+    else:
+        scene_labels, scene_wall = rerun_labels(scene, scene.integrator, catalogues, names,
+                                                picks, executor)
+    tight_labels, tight_wall = rerun_labels(scene, tightened(scene.integrator), catalogues,
+                                            names, picks, executor)
+    changed = scene_labels != tight_labels
     return {"kind": "labels", "sample": int(picks.size), "changed": int(changed.sum()),
             "changed_share": float(changed.mean()) if picks.size else 0.0,
-            "changes": changes, "wall_s": walls["scene"], "tight_wall_s": walls["tight"],
-            "wall_ratio": walls["tight"] / max(walls["scene"], 1e-12)}
+            "changes": label_changes(scene_labels, tight_labels, names),
+            "wall_s": scene_wall, "tight_wall_s": tight_wall,
+            "wall_ratio": tight_wall / max(scene_wall, 1e-12)}
 
 
 def check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
@@ -113,15 +143,6 @@ def check_bifurcation(scene: Scene) -> dict:
             "max_change": float(np.max(np.abs(da[both] - db[both]))) if both.any() else 0.0,
             "appeared_or_vanished": int(changed), "wall_s": mid - start,
             "tight_wall_s": end - mid, "wall_ratio": (end - mid) / max(mid - start, 1e-12)}
-
-
-def report_attributes(report: dict) -> dict:
-    """The report as netCDF attributes (``check_*``)."""
-    out = {}
-    for k, v in report.items():
-        out[f"check_{k}"] = (", ".join(f"{a}: {b}" for a, b in v.items()) or "none"
-                             if isinstance(v, dict) else v)
-    return out
 
 
 def over_limit(report: dict, fail_over: float | None) -> str | None:

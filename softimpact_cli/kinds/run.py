@@ -33,6 +33,9 @@ def run_scene(scene: Scene, progress=None, **options) -> xr.Dataset:
     if "parameters" in ds.attrs:  # a run that states its own parameter point (a design's
         del attrs["parameters"]   # pick) keeps it
     ds.attrs.update(attrs)
+    from ..sweep.verification import not_applicable
+
+    ds.attrs["verify_status"] = not_applicable(kind)
     return ds
 
 

@@ -108,18 +108,21 @@ def map_counts(ds, scene, catalogue):
     return add_map_counts(ds, scene.system, dict(scene.values), list(catalogue.attractors))
 
 
+SHOW_ERROR = PlotOption("--show-error", "show_error", "Print the result's measured label "
+                        "error (its verification line) at the foot.", kind="flag")
+
 PLOTS = {
     "basins": PlotSpec(
         "Basins of attraction of a plane sweep RESULT, one panel per grid point.",
         options=(PlotOption("--max-panels", "max_panels", "Largest number of grid points "
-                            "drawn as panels.", kind="int>=1", default=36),),
+                            "drawn as panels.", kind="int>=1", default=36), SHOW_ERROR),
         complete=True, accept=lambda attrs: attrs.get("ic_kind") == "plane",
         expected="a complete sweep over a plane of initial conditions"),
     "stability": PlotSpec(
         "Basin-stability curves with 95% Wilson bands of a stability RESULT.",
         options=(PlotOption("--against", "against", "Grid axis on the horizontal axis "
                             "(default: the swept one).", kind="choice",
-                            choices=("d", "phi", "k_c", "c_c", "t0")),),
+                            choices=("d", "phi", "k_c", "c_c", "t0")), SHOW_ERROR),
         complete=True),
     "map": PlotSpec("Predicted and found numbers of coexisting solutions over two "
                     "parameters.", complete=True),

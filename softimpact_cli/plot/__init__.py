@@ -252,27 +252,47 @@ def catalogue(ds, ax=None) -> Figure:
     return draw_catalogue(_expect(ds, "catalogue"), ax)
 
 
-def basins(ds, ax=None, *, max_panels: int = 36) -> Figure:
+def error_note(fig, ds) -> Figure:
+    """Print the result's verification line (its measured label error, see
+    ``report.verification``) at the foot of ``fig``; returns ``fig``."""
+    import textwrap
+
+    from ..report.verification import verification_line
+
+    line = verification_line(ds.attrs) or ("label error: not measured (a result written "
+                                           "before sweeps were verified)")
+    root = root_figure(fig)
+    width = max(40, int(14 * root.get_figwidth()))  # characters of 7 pt text per line
+    root.supxlabel("\n".join(textwrap.wrap(line, width)), fontsize=7)
+    return fig
+
+
+def basins(ds, ax=None, *, max_panels: int = 36, show_error: bool = False) -> Figure:
     """Basins of attraction of a plane sweep, one panel per grid point (at most
-    ``max_panels``); an Axes for a result of one grid point."""
+    ``max_panels``); an Axes for a result of one grid point. ``show_error``: print the
+    measured label error at the foot (``error_note``)."""
     from .basins_figure import draw_basins
 
     if ds.attrs.get("ic_kind") != "plane":
         raise ValueError(f"plot.basins: needs a sweep over a plane of initial conditions, "
                          f"got a {ds.attrs.get('analysis')!r} result with "
                          f"{ds.attrs.get('ic_kind')!r} initial conditions")
-    return draw_basins(ds, max_panels, ax)
+    fig = draw_basins(ds, max_panels, ax)
+    return error_note(fig, ds) if show_error else fig
 
 
-def stability(ds, ax=None, *, against: str | None = None) -> Figure:
+def stability(ds, ax=None, *, against: str | None = None, show_error: bool = False
+              ) -> Figure:
     """Basin-stability curves with 95% Wilson bands against the grid axis ``against``
-    (default: the swept one). One panel."""
+    (default: the swept one). One panel. ``show_error``: print the measured label error
+    at the foot (``error_note``)."""
     from ..analysis.stability import basin_stability
     from .stability_figure import draw_stability
 
     swept = str(_expect(ds, "stability").attrs.get("grid_swept", "")).split()
-    return draw_stability(ds, basin_stability(ds), against or (swept[0] if swept else "c_c"),
-                          ax)
+    fig = draw_stability(ds, basin_stability(ds), against or (swept[0] if swept else "c_c"),
+                         ax)
+    return error_note(fig, ds) if show_error else fig
 
 
 def dcrit(ds, ax=None, *, combination: str | None = None) -> Figure:

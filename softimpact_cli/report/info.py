@@ -6,6 +6,7 @@ import numpy as np
 
 from ..kernels.codes import CLASSIFIED_BY
 from ..kinds import KINDS
+from .verification import verification_summary
 
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "catalogue_source", "t0_mode",
@@ -53,6 +54,9 @@ def describe(ds) -> dict:
     kind = KINDS.get(str(ds.attrs.get("analysis")))
     if kind is not None and kind.summary is not None:
         out.update(kind.summary(ds))
+    verification = verification_summary(ds.attrs)
+    if verification is not None:
+        out["verification"] = verification
     out["scene"] = ds.attrs.get("scene_text", "")
     return {k: _plain(v) for k, v in out.items()}
 

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .verification import verification_lines
+
 # parameters a kind varies or does not use, left out of its "parameters" line
 NOT_FIXED = {
     "bifurcation": ("d",),
@@ -17,7 +19,7 @@ NOT_FIXED = {
 }
 SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
                    "combinations", "branches", "d_crit", "orbit", "variables", "target",
-                   "best", "runners_up", "reference", "robustness"}
+                   "best", "runners_up", "reference", "robustness", "verification"}
 
 
 def text(value) -> str:
@@ -96,6 +98,7 @@ def format_summary(summary: dict, ds, max_points: int = 50) -> str:
         lines += _branch_table(summary["branches"])
     if "d_crit" in summary:
         lines += _dcrit_table(summary["d_crit"])
+    lines += verification_lines(ds.attrs)  # the label error, next to the shares
     if "stability" in summary:
         lines += _stability_table(summary["stability"], max_points)
     elif summary.get("points"):

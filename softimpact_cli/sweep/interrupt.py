@@ -151,12 +151,14 @@ def sweep_kept(out: Path, scene: str, flags: tuple[str, ...] = (),
         header, done = None, 0
     if header is None or "n_chunks" not in header.attrs:
         return f"nothing written to {out}"
+    command = shlex.join(["softimpact", "sweep", scene, "-o", str(out), *flags, "--resume"])
     if int(header.attrs.get("complete", 0)) == 1:
         if before is not None and modified(out) == before:
             return f"nothing written ({out} holds an earlier result, unchanged)"
+        if str(header.attrs.get("verify_status", "")).startswith("not verified (interrupted"):
+            return f"{out} is complete but not verified; verify with: {command}"
         return f"{out} is complete"
     total = int(header.attrs["n_chunks"])
-    command = shlex.join(["softimpact", "sweep", scene, "-o", str(out), *flags, "--resume"])
     return f"{done} of {total} chunks kept in {store.parts}; resume with: {command}"
 
 

@@ -51,7 +51,8 @@ def test_dcrit_check_is_small():
     assert report["sample"] == 3 and report["max_change"] < 1e-8
 
 
-def test_sweep_check_stored_in_result(tmp_path):
+def test_sweep_check_n_sets_the_verification_sample(tmp_path):
+    """`sweep --check N` verifies the sweep on N trajectories; `info --json` shows it."""
     out = tmp_path / "c.h5"
     scene = tmp_path / "c.toml"
     scene.write_text(SWEEP.replace("{out}", str(out)))
@@ -60,13 +61,13 @@ def test_sweep_check_stored_in_result(tmp_path):
                           text=True)
     assert proc.returncode == 0, proc.stderr
     with xr.open_dataset(out) as ds:
-        assert ds.attrs["check_sample"] == 10
-        assert 0.0 <= ds.attrs["check_changed_share"] <= 1.0
-        assert np.isfinite(ds.attrs["check_wall_ratio"])
+        assert ds.attrs["verify_sample"] == 10
+        assert 0.0 <= ds.attrs["verify_share"] <= 1.0
+        assert np.isfinite(ds.attrs["verify_check_wall_s"])
     info = json.loads(subprocess.run([sys.executable, "-m", "softimpact_cli", "info",
                                       str(out), "--json"], capture_output=True,
                                      text=True).stdout)
-    assert info["check_sample"] == 10 and "wall_s" in info
+    assert info["verification"]["sample"] == 10 and "wall_s" in info
 
 
 def test_check_after_a_sweep_compares_the_stored_labels(tmp_path):
