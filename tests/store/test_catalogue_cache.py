@@ -252,9 +252,9 @@ def test_sweep_no_cache_flag(tmp_path, searches):
     out = tmp_path / "s.h5"
     scene.write_text(scene_text(out, 2))
     runner = CliRunner()
-    for flags in ((), ("--no-cache",)):
+    for flags in ((), ("--no-cache",)):  # --no-verify: the verification's own catalogue
         result = runner.invoke(main, ["sweep", str(scene), "--workers", "1", "--overwrite",
-                                      *flags])
+                                      "--no-verify", *flags])  # would search once more
         assert result.exit_code == 0, result.output
     assert "catalogue search: computed (cache off)" in result.output
     assert len(searches) == 2 and "SOFTIMPACT_NO_CACHE" not in os.environ

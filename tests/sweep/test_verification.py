@@ -72,7 +72,7 @@ def test_ladder_turns_cells_and_capture_off_first_then_tolerances():
     assert s1.rtol == loose.rtol
     assert (s2.rtol, s2.atol, s2.cell_size) == (1e-10, 1e-12, 0.0)
     assert s2.steps_per_period == 4 * loose.steps_per_period
-    plain = IntegratorSettings(capture_tol=0.0)
+    plain = IntegratorSettings(capture_tol=0.0, cell_size=0.0)
     assert [s.rtol for _, s in v.ladder(plain)] == [1e-10]  # nothing to switch off
 
 
