@@ -12,8 +12,11 @@ share that disagrees gets a 95% Wilson interval ``[low, high]``; with ``threshol
 - no disagreement, but ``high > threshold``: "inconclusive" (the sample is too small to
   bound the error below the threshold; nothing is redone: there is nothing to fix);
 - disagreements and ``high > threshold``: with ``tighten``, the whole sweep is redone on
-  the next rung of :func:`ladder` (recurrence cells and capture off; then rtol and atol /
-  100 and 4x RK4 steps) and verified again, at most MAX_RUNGS times; the final result is
+  the next rung of :func:`ladder` and verified again, at most MAX_RUNGS times. Which rung
+  comes first, the sample says: it is also rerun alone at the sweep's own settings without
+  capture and cells; when those labels already disagree with the tight ones beyond the
+  threshold, the tolerance is to blame (rtol and atol / 100 and 4x RK4 steps first, capture
+  and cells kept), else capture and cells are (off first, then the tolerance). The final result is
   kept, every attempt recorded (``verify_history``); status "tightened" when the final
   attempt is not over the threshold, else "over threshold" (as without ``tighten``).
 
@@ -91,6 +94,18 @@ class Attempt:
     changes: dict
     check_wall_s: float
     run_wall_s: float
+    alone_disagreements: int | None = None  # the same settings without capture or cells
+
+    def blame(self, threshold: float) -> str:
+        """What the ladder should tighten first: "tolerance" when the run's settings
+        without capture and cells already disagree beyond the threshold, else "shortcuts"
+        (capture and recurrence cells)."""
+        from ..analysis.stability import wilson_interval
+
+        if not self.alone_disagreements:
+            return "shortcuts"
+        (_,), (high,) = wilson_interval(np.array([self.alone_disagreements]), self.sample)
+        return "tolerance" if high > threshold else "shortcuts"
 
     @property
     def share(self) -> float:
@@ -117,12 +132,24 @@ def check_result(scene: Scene, ds: xr.Dataset, sample: int, seed: int, executor=
                    sample=report["sample"], total=int(ds.attrs["n"]),
                    disagreements=report["changed"], ci_low=float(low), ci_high=float(high),
                    changes=report["changes"], check_wall_s=report["tight_wall_s"],
-                   run_wall_s=float(ds.attrs["wall_s"]))
+                   run_wall_s=float(ds.attrs["wall_s"]),
+                   alone_disagreements=report.get("changed_alone"))
 
 
-def ladder(s: IntegratorSettings) -> list[tuple[str, IntegratorSettings]]:
+def ladder(s: IntegratorSettings, blame: str = "shortcuts"
+           ) -> list[tuple[str, IntegratorSettings]]:
     """The rungs a sweep over the threshold is redone on, each tighter than the one
-    before: (what changed, settings). A rung that would change nothing is left out."""
+    before: (what changed, settings). A rung that would change nothing is left out.
+    ``blame`` (:meth:`Attempt.blame`) "tolerance": the tolerance first, capture and cells
+    kept (they cost nothing in labels there), then both."""
+    if blame == "tolerance":
+        tighter = replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
+                          steps_per_period=4 * s.steps_per_period)
+        rungs = [("rtol and atol / 100, 4x RK4 steps", tighter)]
+        if s.cell_size > 0 or s.capture_tol > 0:
+            rungs.append(("rtol and atol / 100, 4x RK4 steps, cells and capture off",
+                          replace(tighter, cell_size=0.0, capture_tol=0.0)))
+        return rungs[:MAX_RUNGS]
     rungs = []
     if s.cell_size > 0 or s.capture_tol > 0:
         s = replace(s, cell_size=0.0, capture_tol=0.0)
@@ -159,8 +186,9 @@ def verify_sweep(scene: Scene, ds: xr.Dataset, redo: Callable[[Scene, int], xr.D
     echo(f"verification: rerunning {n} of {total} trajectories at "
          f"{settings_text(_reference(scene))}")
     attempts = [check_result(scene, ds, n, settings.seed, executor)]
+    blame = attempts[0].blame(settings.threshold)
     for rung, (description, tighter) in enumerate(
-            ladder(scene.integrator) if settings.tighten else (), start=1):
+            ladder(scene.integrator, blame) if settings.tighten else (), start=1):
         if attempts[-1].outcome(settings.threshold) != OVER:
             break
         echo(f"verification: {_numbers(attempts[-1])} > {_percent(settings.threshold)}; "
@@ -232,6 +260,8 @@ def attributes(attempts: list[Attempt], threshold: float, tighten: bool, wall_s:
         "verify_changes": ", ".join(f"{k}: {v}" for k, v in last.changes.items()) or "none",
         "verify_check_wall_s": last.check_wall_s, "verify_wall_s": wall_s,
         "verify_rungs": len(attempts) - 1,
+        "verify_blame": (attempts[0].blame(threshold)
+                         if attempts[0].alone_disagreements is not None else "n/a"),
         "verify_history": json.dumps([{**asdict(a), "outcome": a.outcome(threshold)}
                                       for a in attempts]),
     }

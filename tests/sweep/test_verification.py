@@ -2,6 +2,7 @@
 and whole runs (a planted mislabel is caught and tightened; a clean run is reported as
 the rule says; a killed verification loses nothing)."""
 
+import dataclasses
 import json
 import subprocess
 import sys
@@ -74,6 +75,25 @@ def test_ladder_turns_cells_and_capture_off_first_then_tolerances():
     assert s2.steps_per_period == 4 * loose.steps_per_period
     plain = IntegratorSettings(capture_tol=0.0, cell_size=0.0)
     assert [s.rtol for _, s in v.ladder(plain)] == [1e-10]  # nothing to switch off
+
+
+def test_the_sample_says_whether_tolerance_or_shortcuts_are_to_blame():
+    """Rerun alone at its own settings, the sample tells a tolerance error (the labels
+    disagree already without capture and cells) from a shortcut error; the ladder then
+    tightens what is to blame first and keeps the cells where they cost nothing."""
+    def with_alone(n):
+        return dataclasses.replace(attempt(12, 400), alone_disagreements=n)
+
+    assert with_alone(11).blame(0.005) == "tolerance"
+    assert with_alone(0).blame(0.005) == "shortcuts"
+    assert with_alone(None).blame(0.005) == "shortcuts"  # nothing to tell: as before
+    assert with_alone(1).blame(0.05) == "shortcuts"  # within the threshold on its own
+    s = IntegratorSettings()
+    (first, s1), (second, s2) = v.ladder(s, "tolerance")
+    assert (s1.rtol, s1.cell_size, s1.capture_tol) == (s.rtol / 100, s.cell_size,
+                                                      s.capture_tol)
+    assert (s2.rtol, s2.cell_size, s2.capture_tol) == (s.rtol / 100, 0.0, 0.0)
+    assert "cells and capture off" in second and "cells" not in first
 
 
 def sweep_cli(tmp_path, text, *flags):
