@@ -138,6 +138,20 @@ $(DESIGNS): $(STAMP)
 RES ?= 100
 bench: $(STAMP)
 	$(PY) benchmarks/bench_basin.py --resolution $(RES) $(BENCH_ARGS)
+	$(PY) benchmarks/bench_targets.py $(TARGET_ARGS)
+
+# The defaults' targets (issue 15) in one run: figure 6(d) at 500 x 500 and the fractal
+# planes 9, 12(a), 13(a), 14(a) at 100 x 100 against a tight reference, beside the settings
+# before, the study's method and scipy; basin stability, a small sweep, its fixed cost,
+# the integrator's overhead (results/bench/targets.md; about 30 min on 2 cores, references
+# cached). TARGET_ARGS="--cold" also times a cold compile. bench-settings: the measurement
+# behind the defaults (candidate settings on the same planes).
+bench-targets: $(STAMP)
+	$(PY) benchmarks/bench_targets.py $(TARGET_ARGS)
+
+bench-settings: $(STAMP)
+	$(PY) benchmarks/bench_settings.py $(SETTINGS_ARGS)
+.PHONY: bench-targets bench-settings
 
 # Work-precision: error vs wall time of every integrator setting on a smooth trajectory,
 # trajectories through contacts and the figure 6(d) basin (results/bench/precision.md,
