@@ -231,6 +231,8 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     store = SweepStore(out)
     executor = make_executor(workers, scheduler)
     size = chunk_size_for(scene, chunk_size, getattr(executor, "workers", 8))
+    if chunk_size:  # as the run uses it (whole cell blocks), for the resume checks below
+        chunk_size = size
     header = None
     if resume:
         try:

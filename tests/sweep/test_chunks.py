@@ -59,3 +59,27 @@ def test_default_chunk_size_is_whole_blocks(n_total, workers, block):
     size = default_chunk_size(n_total, workers, block)
     assert size % block == 0
     assert 16 <= size < 2000 + block
+
+
+def test_resume_accepts_the_chunk_size_it_was_given(tmp_path, monkeypatch):
+    """--chunk-size 5 with cells runs in chunks of 256; resuming with --chunk-size 5 again
+    is the same size, not a refused change."""
+    import pytest
+
+    from softimpact_cli.store.sweep_store import SweepStore
+    from softimpact_cli.sweep import run_sweep
+
+    class Killed(Exception):
+        pass
+
+    def killed(self, result):
+        raise Killed
+
+    out = tmp_path / "r.h5"
+    scene = parse_scene(SCENE.replace("[25, 25]", "[12, 12]"), "r.toml")
+    with monkeypatch.context() as m:
+        m.setattr(SweepStore, "finish", killed)
+        with pytest.raises(Killed):
+            run_sweep(scene, out, workers=1, chunk_size=5)
+    again = run_sweep(scene, out, workers=1, chunk_size=5, resume=True)
+    assert int(again.attrs["chunk_size"]) == CELL_BLOCK and int(again.attrs["resumed"]) == 1
