@@ -16,7 +16,8 @@ Contestants (every one on 2 worker processes, so that ICs/s compare like with li
    300 periods, then 60 recorded stroboscopic points to classify; a subsample of K.
 
 Label agreement is measured against a tight reference (softimpact, dopri5 rtol 1e-11,
-atol 1e-13, convergence_tol 1e-9, max_periods 6000) on the same grid points; every
+atol 1e-13, convergence_tol 1e-9, max_periods 6000, no capture, no recurrence cells:
+``_common.TIGHT``) on the same grid points; every
 contestant's final orbit is named with the same catalogue (``label_orbit``).
 
 Also: the figure 14(c) basin-stability run (N = 1000, 2 workers; target <= 5 s), and a
@@ -39,6 +40,7 @@ from pathlib import Path
 import numpy as np
 from _common import (  # the benchmarks folder is on sys.path when this script runs
     ROOT,
+    TIGHT,
     WORKERS,
     fmt_time,
     label_states,
@@ -57,8 +59,7 @@ from where_time_goes import StageClock, phases, rhs_floor
 from softimpact_cli.analysis.labels import name_of
 from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep
 
-REFERENCE = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
-                 max_periods=6000)
+REFERENCE = TIGHT  # no capture, no cells: the reference converges by itself
 
 
 def labels_of(ds) -> tuple[np.ndarray, tuple[str, ...]]:

@@ -45,6 +45,7 @@ from pathlib import Path
 import numpy as np
 from _common import (
     ROOT,
+    TIGHT,
     WORKERS,
     code_version,
     fmt_time,
@@ -67,8 +68,7 @@ DOPRI5_RTOLS = tuple(10.0 ** -k for k in range(4, 13))
 RODAS4_RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
 TRAJECTORY_REFERENCE = dict(method="dopri5", rtol=1e-13, atol=1e-15)
 FLOOR_CHECK_STEPS = 46080  # RK4 with location at T/46080: an independent check of it
-BASIN_REFERENCE = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
-                       max_periods=6000, capture_tol=0.0)
+BASIN_REFERENCE = TIGHT  # no capture, no recurrence cells
 # what decides a label besides the integrator: a change here recomputes the reference
 CLASSIFYING_SOURCES = ("analysis/engine.py", "analysis/labels.py", "sweep/chunks.py",
                        "analysis/catalogue.py")
