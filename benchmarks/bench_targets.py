@@ -5,9 +5,10 @@ beside the settings before it, the study's method and a scipy loop, as ratios.
         [--sample 1000] [--cold]
 
 Per plane (figure 6(d) at --resolution, the fractal planes of figures 9, 12(a), 13(a),
-14(a) at --fractal-resolution): a whole-plane ``run_sweep`` (2 workers, verification
-included) at today's defaults and at the settings before issue 15 (auto, rtol 1e-8, capture,
-no cells), each against the tight reference on --sample random points (cached); the
+14(a) at --fractal-resolution): a whole-plane sweep (2 workers) at today's defaults as
+``softimpact sweep`` runs it (tolerance pilot, sweep, verification and any redo, all in
+its wall) and at the settings before issue 15 (auto, rtol 1e-8, capture, no cells; the
+sweep alone), each against the tight reference on --sample random points (cached); the
 study's method (RK4 T/1440, no switch location, 1000 periods) on 40 of those points and a
 scipy ``solve_ivp`` loop on 10, as ratios. Then: figure 14(c) basin stability with
 N = 1000 (warm), a 10 x 10 basin sweep from the command line (warm), the fixed cost of a
@@ -45,6 +46,7 @@ from study_method import StudyMethod
 from where_time_goes import StageClock, rhs_floor
 
 from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep
+from softimpact_cli.sweep.verification import sweep_verified
 
 BEFORE = dict(method="auto", rtol=1e-8, atol=1e-10, capture_tol=1e-2, capture_hits=3,
               cell_size=0.0, convergence_tol=1e-6)  # the defaults until issue 15
@@ -56,15 +58,22 @@ def agreement(got: list[str], picks, ref: list[str]) -> tuple[int, int]:
     return same, len(ref)
 
 
-def sweep_row(scene, tmp: Path, picks, ref) -> dict:
-    """Whole-plane sweep: ICs/s and agreement at the sample points."""
+def sweep_row(scene, tmp: Path, picks, ref, verified: bool = False) -> dict:
+    """Whole-plane sweep: ICs/s and agreement at the sample points. ``verified``: as
+    ``softimpact sweep`` runs it (tolerance pilot, sweep, verification and any redo), the
+    wall including all of it."""
     t = time.perf_counter()
-    ds = run_sweep(scene, tmp / "plane.h5", workers=WORKERS, overwrite=True)
+    if verified:
+        ds = sweep_verified(scene, tmp / "plane.h5", workers=WORKERS, overwrite=True)
+    else:
+        ds = run_sweep(scene, tmp / "plane.h5", workers=WORKERS, overwrite=True)
     wall = time.perf_counter() - t
     same, n = agreement(label_names(ds), picks, ref)
     n_total = ds["label"].size
     verify = {k[len("verify_"):]: v for k, v in ds.attrs.items() if k.startswith("verify_")}
-    return {"rate": n_total / wall, "wall": wall, "same": same, "n": n, "verify": verify}
+    return {"rate": n_total / wall, "wall": wall, "same": same, "n": n, "verify": verify,
+            "pilot": str(ds.attrs.get("pilot_status", "")),
+            "pilot_wall": float(ds.attrs.get("pilot_wall_s", 0.0))}
 
 
 def sample_row(label, states, picks, ref) -> dict:
@@ -80,7 +89,8 @@ def plane_rows(name: str, resolution: int, sample: int, tmp: Path) -> dict:
     ref = tight_reference(name, resolution, picks)
     rows = {}
     for key, keys in (("defaults", {}), ("before", BEFORE)):
-        rows[key] = sweep_row(plane_scene(name, resolution, keys), tmp, picks, ref)
+        rows[key] = sweep_row(plane_scene(name, resolution, keys), tmp, picks, ref,
+                              verified=key == "defaults")
         print(f"    {key}: {rows[key]['rate']:.0f} ICs/s, agreement "
               f"{rows[key]['same']}/{rows[key]['n']}", flush=True)
     scene = plane_scene(name, resolution, BEFORE)
@@ -144,11 +154,15 @@ def plane_table(name: str, rows: dict, n_grid: int) -> list[str]:
     out = [f"| {name} | {key} | {r['rate']:.1f} | {fmt_time(n_grid / r['rate'])} | "
            f"{r['rate'] / before:.2f}x | {pct(r['same'], r['n'])} |"
            for key, r in rows.items()]
-    v = rows["defaults"]["verify"]
+    d = rows["defaults"]
+    v = d["verify"]
     if v:
-        out.append(f"| {name} | defaults' own verification | | | | "
+        out.append(f"| {name} | defaults' own verification | | {fmt_time(v['wall_s'])} | | "
                    f"{v.get('status', '?')}: {v.get('disagreements', '?')}/"
-                   f"{v.get('sample', '?')} disagree |")
+                   f"{v.get('sample', '?')} disagree, {v.get('rungs', 0)} redo(s) |")
+    if d["pilot"]:
+        out.append(f"| {name} | defaults' tolerance pilot | | {fmt_time(d['pilot_wall'])} "
+                   f"| | {d['pilot']} |")
     return out
 
 
@@ -209,7 +223,9 @@ def main(argv=None) -> int:
              "Before: the defaults until issue 15 (auto, rtol 1e-8, atol 1e-10, capture "
              "1e-2 x 3, no recurrence cells). The study's method and scipy ran on the first "
              f"{STUDY_SAMPLE} and {SCIPY_SAMPLE} sample points (rates extrapolate); the "
-             "sweeps' walls include the catalogue and the HDF5 result.", "",
+             "sweeps' walls include the catalogue and the HDF5 result; the defaults' walls "
+             "also the tolerance pilot, the verification and any redo it made (what "
+             "`softimpact sweep` does), the rows below them what those took.", "",
              f"Integrator cost: {floor}", ""]
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -162,16 +162,20 @@ def _sweep_in_memory(sc: Scene, workers, scheduler, chunk_size, echo, bar, verif
     """A sweep kind run in memory, then verified (or recorded as not verified)."""
     from .sweep import sweep_in_memory
     from .sweep.executors import make_executor
+    from .sweep.pilot import choose_tolerance
     from .sweep.verification import disabled_status, verify_sweep
 
-    ds = sweep_in_memory(sc, workers, scheduler, chunk_size, echo, bar)
     if not (verify and (sc.verification is None or sc.verification.enabled)):
+        ds = sweep_in_memory(sc, workers, scheduler, chunk_size, echo, bar)
         ds.attrs["verify_status"] = disabled_status(
             "--no-verify" if not verify else "[verification] enabled = false")
         return ds
+    executor = make_executor(workers, scheduler)
+    sc, pilot = choose_tolerance(sc, verify_sample, executor, echo)
+    ds = sweep_in_memory(sc, workers, scheduler, chunk_size, echo, bar)
+    ds.attrs.update(pilot)
     return verify_sweep(sc, ds, lambda tighter, _: sweep_in_memory(
-        tighter, workers, scheduler, chunk_size, echo, bar), verify_sample,
-        make_executor(workers, scheduler), echo)
+        tighter, workers, scheduler, chunk_size, echo, bar), verify_sample, executor, echo)
 
 
 def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: bool = False,

@@ -26,6 +26,10 @@ class VerificationSettings:
     tighten : redo the whole sweep at tighter settings when it is over the threshold
     seed : seed of the random sample
     enabled : false records "not verified (disabled by [verification] enabled = false)"
+    pilot : before a large sweep, choose the loosest tolerance that labels a pilot sample
+        as the tight reference does (``sweep.pilot``)
+    pilot_sample : trajectories in that sample; the pilot runs on sweeps of at least
+        ``sweep.pilot.MIN_TOTAL_RATIO`` times as many
     """
 
     share: float = 0.01
@@ -35,6 +39,8 @@ class VerificationSettings:
     tighten: bool = True
     seed: int = 0
     enabled: bool = True
+    pilot: bool = True
+    pilot_sample: int = 400
 
     def sample_size(self, total: int) -> int:
         """Trajectories rerun out of ``total``: round(share * total) clamped to
@@ -43,7 +49,8 @@ class VerificationSettings:
         return max(0, min(wanted, total))
 
 
-KEYS = ("share", "min_sample", "max_sample", "threshold", "tighten", "seed", "enabled")
+KEYS = ("share", "min_sample", "max_sample", "threshold", "tighten", "seed", "enabled", "pilot",
+        "pilot_sample")
 
 
 def _open_unit(value: float) -> str | None:
@@ -66,6 +73,8 @@ def read_verification(source: str, doc: dict) -> VerificationSettings:
         tighten=sec.boolean("tighten", d.tighten),
         seed=sec.integer("seed", d.seed, 0, 2**63 - 1),
         enabled=sec.boolean("enabled", d.enabled),
+        pilot=sec.boolean("pilot", d.pilot),
+        pilot_sample=sec.integer("pilot_sample", d.pilot_sample, 1, MAX_SAMPLE_LIMIT),
     )
     sec.finish(KEYS)
     if settings.min_sample > settings.max_sample:

@@ -27,7 +27,42 @@ def verification_summary(attrs: Mapping[str, Any]) -> dict | None:
             out[key] = float(value) if isinstance(value, float) else int(value)
     if "verify_history" in attrs:
         out["history"] = json.loads(str(attrs["verify_history"]))
+    if "pilot_status" in attrs:
+        out["pilot"] = pilot_summary(attrs)
     return out
+
+
+def pilot_summary(attrs: Mapping[str, Any]) -> dict:
+    """The tolerance pilot's record (``pilot_*`` attributes, see ``sweep.pilot``)."""
+    out: dict[str, Any] = {"status": str(attrs["pilot_status"])}
+    for key in ("sample", "reference_rtol", "rtol", "atol", "wall_s", "reference_wall_s"):
+        if f"pilot_{key}" in attrs:
+            value = attrs[f"pilot_{key}"]
+            out[key] = int(value) if key == "sample" else float(value)
+    if "pilot_trials" in attrs:
+        out["trials"] = json.loads(str(attrs["pilot_trials"]))
+    return out
+
+
+def pilot_trial_text(trial: Mapping[str, Any], sample: int) -> str:
+    """How one candidate of the pilot did, e.g. ``0 of 400 disagree (1.2 s)``."""
+    if trial["names_differ"]:
+        return "its attractor search found other attractors"
+    return f"{trial['disagreements']} of {sample} disagree ({trial['wall_s']:.1f} s)"
+
+
+def pilot_line(attrs: Mapping[str, Any]) -> str | None:
+    """One line: what the tolerance pilot chose and on what evidence (None: the result
+    has no pilot record)."""
+    if "pilot_status" not in attrs:
+        return None
+    s = pilot_summary(attrs)
+    if "trials" not in s:
+        return f"tolerance pilot: {s['status']}"
+    tried = "; ".join(f"rtol {t['rtol']:g}: {pilot_trial_text(t, s['sample'])}"
+                      for t in s["trials"])
+    return (f"tolerance pilot: {s['status']} ({s['sample']} trajectories against rtol "
+            f"{s['reference_rtol']:g}; {tried})")
 
 
 def _percent(share: float) -> str:
@@ -68,4 +103,5 @@ def verification_lines(attrs: Mapping[str, Any]) -> list[str]:
                    f"{_percent(a['ci_high'])}], {a['outcome']}, run {a['run_wall_s']:.1f} s")
     if s.get("changes") not in (None, "none"):
         out.append(f"  changes: {s['changes']}")
-    return out
+    pilot = pilot_line(attrs)
+    return out + ([pilot] if pilot else [])

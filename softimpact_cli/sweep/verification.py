@@ -305,17 +305,26 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
     from ..store.lock import output_lock
     from ..store.provenance import command_line
     from .executors import make_executor
+    from .pilot import choose_tolerance, scene_as_run
     from .runner import run_sweep
 
     with output_lock(out, command_line()):
+        enabled = verify and (scene.verification is None or scene.verification.enabled)
+        executor = make_executor(run_options.get("workers"), run_options.get("scheduler"))
         if resume and pending(out):
             from ..store import open_result
 
             echo(f"resume: {out} is complete; finishing its verification")
             ds = open_result(out)
+            scene = scene_as_run(scene, ds.attrs)
         else:
+            pilot: dict = {}
+            if enabled:
+                scene, pilot = choose_tolerance(scene, sample, executor, echo)
             ds = run_sweep(scene, out, resume=resume, echo=echo, **run_options)
-        if not (verify and (scene.verification is None or scene.verification.enabled)):
+            add_attributes(out, pilot)
+            ds.attrs.update(pilot)
+        if not enabled:
             by = "--no-verify" if not verify else "[verification] enabled = false"
             add_attributes(out, {"verify_status": disabled_status(by)})
             ds.attrs["verify_status"] = disabled_status(by)
@@ -330,9 +339,7 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
             return run_sweep(tighter, path, resume=resume and SweepStore(path).exists(),
                              overwrite=True, echo=echo, **options)
 
-        ds = verify_sweep(scene, ds, redo, sample,
-                          make_executor(options.get("workers"), options.get("scheduler")),
-                          echo)
+        ds = verify_sweep(scene, ds, redo, sample, executor, echo)
         write_result(ds, out)
         remove_redo_files(out)
     return ds

@@ -27,19 +27,22 @@ def test_defaults_without_the_section():
     assert v == VerificationSettings()
     assert (v.share, v.min_sample, v.max_sample, v.threshold) == (0.01, 50, 2000, 0.005)
     assert v.tighten and v.enabled and v.seed == 0
+    assert v.pilot and v.pilot_sample == 400
 
 
 def test_every_key_is_read():
     text = BASINS + ("[verification]\nshare = 0.05\nmin_sample = 10\nmax_sample = 100\n"
-                     "threshold = 0.02\ntighten = false\nseed = 7\nenabled = false\n")
+                     "threshold = 0.02\ntighten = false\nseed = 7\nenabled = false\n"
+                     "pilot = false\npilot_sample = 30\n")
     assert parse_scene(text, "b.toml").verification == VerificationSettings(
         share=0.05, min_sample=10, max_sample=100, threshold=0.02, tighten=False, seed=7,
-        enabled=False)
+        enabled=False, pilot=False, pilot_sample=30)
 
 
 @pytest.mark.parametrize("body, message", [
     ("shares = 0.1", "[verification] shares: unknown key (did you mean 'share'?); allowed: "
-                     "enabled, max_sample, min_sample, seed, share, threshold, tighten"),
+                     "enabled, max_sample, min_sample, pilot, pilot_sample, seed, share, "
+                     "threshold, tighten"),
     ("share = 0.0", "[verification] share: must be in (0, 1], got 0.0"),
     ("share = 1.5", "[verification] share: must be in (0, 1], got 1.5"),
     ("threshold = 1", "[verification] threshold: must be in (0, 1), got 1.0"),
@@ -48,6 +51,8 @@ def test_every_key_is_read():
     ("min_sample = 500\nmax_sample = 100",
      "[verification] min_sample: must be <= max_sample (100), got 500"),
     ("tighten = 1", "[verification] tighten: must be true or false, got 1"),
+    ("pilot = \"yes\"", "[verification] pilot: must be true or false, got 'yes'"),
+    ("pilot_sample = 0", "[verification] pilot_sample: must be in 1..1000000, got 0"),
 ])
 def test_bad_keys_name_the_key_and_what_is_allowed(body, message):
     with pytest.raises(ConfigError) as err:
