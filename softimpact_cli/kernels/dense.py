@@ -32,12 +32,18 @@ def dense_state(work, u, out):
         )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def write_samples(work, t, h, opts, istate, sample_t, sample_y):
-    """Write every sample time in (t, t + h] (and t itself for sample 0)."""
+    """Write every sample time in (t, t + h] (and t itself for sample 0). Inlined: without
+    sampling, every step pays only the test (a call passing arrays costs reference
+    counting, more than the test)."""
+    if opts[SAMPLE_DT] > 0.0:
+        _write_samples(work, t, h, opts, istate, sample_t, sample_y)
+
+
+@njit(cache=True)
+def _write_samples(work, t, h, opts, istate, sample_t, sample_y):
     dt = opts[SAMPLE_DT]
-    if dt <= 0.0:
-        return
     capacity = sample_t.shape[0]
     k = istate[N_SAMPLES]
     while k < capacity:

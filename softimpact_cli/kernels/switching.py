@@ -39,7 +39,7 @@ def mode_of(y, A, b):
     return mode
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def surface_polynomial(work, A, b, i, coef):
     """Monomial coefficients of g_i along the step (from the dense output in ``work``)."""
     dim = A.shape[1]
@@ -51,7 +51,7 @@ def surface_polynomial(work, A, b, i, coef):
     coef[0] += b[i]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def poly(coef, u):
     return coef[0] + u * (coef[1] + u * (coef[2] + u * (coef[3] + u * coef[4])))
 
@@ -176,18 +176,28 @@ def _root(coef, sign, a, b, ha, hb):
     return 0.5 * (a + b)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def first_exit(coef, engaged):
     """Fraction u in [0, 1] where g first leaves the side given by ``engaged``; -1 if never.
 
     The step starts on its mode's side by construction (a restart right at a switch may
     leave a residual of rounding size on the wrong side; it is treated as zero).
+    Inlined: most steps end at the cheap rejection, which then costs no call (a call
+    passing arrays costs reference counting, more than the test itself).
     """
     sign = 1.0 if engaged else -1.0
     h0 = sign * coef[0]
-    # Cheap rejection: |g(u) - g(0)| <= sum |c_k| on [0, 1].
-    if h0 > abs(coef[1]) + abs(coef[2]) + abs(coef[3]) + abs(coef[4]):
+    # Cheap rejection: sign * c_k u^k >= min(sign * c_k, 0) on [0, 1].
+    if h0 + (min(sign * coef[1], 0.0) + min(sign * coef[2], 0.0) + min(sign * coef[3], 0.0)
+             + min(sign * coef[4], 0.0)) > 0.0:
         return -1.0
+    return exit_search(coef, sign, h0)
+
+
+@njit(cache=True)
+def exit_search(coef, sign, h0):
+    """``first_exit`` past its cheap rejection: the first root of sign * g, found piece
+    by piece between the critical points."""
     crit = np.empty(3)
     n = critical_points(coef, crit)
     a = 0.0
@@ -214,7 +224,7 @@ def poly_max(coef, u_end):
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def earliest_exit(work, A, b, relevance, mode, coef):
     """Earliest exit fraction among watched surfaces, and the mask of surfaces exiting there.
 
