@@ -109,8 +109,9 @@ def check_sweep(scene: Scene, sample: int, seed: int, result=None, executor=None
                                             names, picks, executor)
     changed = scene_labels != tight_labels
     report = {}
-    if result is not None and shortcuts(scene.integrator):
-        # the same settings without capture or cells: tells their error from the tolerance's
+    if result is not None and shortcuts(scene.integrator) and changed.any():
+        # the same settings without capture or cells: tells their error from the
+        # tolerance's (nothing to tell when no label changed)
         alone, _ = rerun_labels(scene, without_shortcuts(scene.integrator), catalogues, names,
                                 picks, executor)
         report["changed_alone"] = int((alone != tight_labels).sum())

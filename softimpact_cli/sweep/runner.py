@@ -212,9 +212,12 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
 def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: str | None = None,
               resume: bool = False, overwrite: bool = False, chunk_size: int | None = None,
               echo: Callable[[str], None] = lambda s: None,
-              progress: Callable[[int, int], Callable[[np.ndarray], None]] | None = None
-              ) -> xr.Dataset:
+              progress: Callable[[int, int], Callable[[np.ndarray], None]] | None = None,
+              attrs: dict | None = None) -> xr.Dataset:
     """Run (or resume) a sweep scene into ``out``; return the complete dataset.
+
+    ``attrs``: global attributes the complete result is written with (what a caller
+    knows before the end, such as the verification's status, costs no second write).
 
     ``progress(total, initial)`` may return a callable fed with each chunk's label codes.
     The output is locked for the whole run: a second run on it is refused (ConfigError
@@ -223,10 +226,11 @@ def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: st
     """
     with output_lock(out, command_line()):
         return _run_sweep(scene, Path(out), workers, scheduler, resume, overwrite,
-                          chunk_size, echo, progress)
+                          chunk_size, echo, progress, attrs or {})
 
 
-def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, echo, progress):
+def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, echo, progress,
+               attrs):
     session = time.time()
     store = SweepStore(out)
     executor = make_executor(workers, scheduler)
@@ -332,5 +336,6 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
                      "plan": plan.describe(), "executor": executor.describe(),
                      "resumed": int(bool(good)), "sessions": len(sessions),
                      "history": header.attrs["history"], "complete": 1})
+    ds.attrs.update(attrs)
     store.finish(ds)
     return ds

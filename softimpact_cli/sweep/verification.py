@@ -318,18 +318,18 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
             ds = open_result(out)
             scene = scene_as_run(scene, ds.attrs)
         else:
-            pilot: dict = {}
             if enabled:
-                scene, pilot = choose_tolerance(scene, sample, executor, echo)
-            ds = run_sweep(scene, out, resume=resume, echo=echo, **run_options)
-            add_attributes(out, pilot)
-            ds.attrs.update(pilot)
+                scene, extra = choose_tolerance(scene, sample, executor, echo)
+                extra["verify_status"] = PENDING  # until the verification below ends
+            else:
+                by = "--no-verify" if not verify else "[verification] enabled = false"
+                extra = {"verify_status": disabled_status(by)}
+            ds = run_sweep(scene, out, resume=resume, echo=echo, attrs=extra, **run_options)
+            if any(ds.attrs.get(k) != value for k, value in extra.items()):
+                add_attributes(out, extra)  # a run found complete already: not written
+                ds.attrs.update(extra)
         if not enabled:
-            by = "--no-verify" if not verify else "[verification] enabled = false"
-            add_attributes(out, {"verify_status": disabled_status(by)})
-            ds.attrs["verify_status"] = disabled_status(by)
             return ds
-        add_attributes(out, {"verify_status": PENDING})
         options = {k: v for k, v in run_options.items() if k != "overwrite"}
 
         def redo(tighter: Scene, rung: int) -> xr.Dataset:
