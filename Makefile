@@ -114,12 +114,18 @@ map-d-phi: $(STAMP)
 	$(SI) plot map results/map_d_phi.h5 -o results/map_d_phi.png
 FIGURES += map-d-phi
 
+# Tipping probabilities of the study's control scenario: d 22 -> 6 at phi = 0 (README).
+tipping: $(STAMP)
+	$(SI) sweep configs/tipping_duffing_d22_to_6.toml -o results/tipping_duffing_d22_to_6.h5 \
+		--overwrite $(QUICKFLAG)
+	$(SI) plot tipping results/tipping_duffing_d22_to_6.h5 -o results/tipping_duffing_d22_to_6.png
+
 $(BASIN_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot basins results/$@.h5 -o results/$@.png
 
 
-.PHONY: figures map-d-phi fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
+.PHONY: figures map-d-phi tipping fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
 # Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.

@@ -157,6 +157,30 @@ seed = 3
 [output]
 path = "results/example_map.h5"
 """,
+    "tipping": """\
+[system]
+model = "duffing"
+
+[coupling]
+phi = 0.0
+k_c = 8.0
+c_c = 10.0
+
+[analysis]
+kind = "tipping"           # where basins and solutions go when the parameters jump
+
+[grid]                     # exactly two points: before, then after
+panels = [{ d = 22.0 }, { d = 6.0 }]
+
+[initial_conditions]
+kind = "plane"
+axes = ["x1", "x2"]
+ranges = [[-12.0, 12.0], [-12.0, 12.0]]
+resolution = [20, 20]
+
+[output]
+path = "results/example_tipping.h5"
+""",
     "design": """\
 [system]
 model = "duffing"

@@ -322,6 +322,16 @@ def map(ds, ax=None) -> Figure:  # noqa: A001 (named after the kind, as the CLI'
     return draw_map(_expect(ds, "map"), ax)
 
 
+def tipping(ds, ax=None, *, no_basins: bool = False, show_error: bool = False) -> Figure:
+    """The tipping matrix P(i -> j) with 95% Wilson intervals; over a plane also the
+    basins before and after (panels: before, after, matrix; ``no_basins`` or an Axes: the
+    matrix alone). ``show_error``: the measured label error at the foot."""
+    from .tipping_figure import draw_tipping
+
+    fig = draw_tipping(_expect(ds, "tipping"), no_basins, ax)
+    return error_note(fig, ds) if show_error else fig
+
+
 def design(ds, ax=None) -> Figure:
     """The (d, phi) plane with the target-only region, a zoom around the pick, the
     basin stability at the pick, the perturbations."""
@@ -331,7 +341,7 @@ def design(ds, ax=None) -> Figure:
 
 
 KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
-         "design")  # the functions above, by analysis kind
+         "tipping", "design")  # the functions above, by analysis kind
 
 
 def _expect(ds, kind: str):

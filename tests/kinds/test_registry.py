@@ -35,8 +35,8 @@ def test_every_kind_declares_a_figure_and_the_plot_commands_follow_the_registry(
 
 def test_every_kind_has_a_home_and_sweeps_are_those_without_a_run():
     assert set(ANALYSIS_KINDS) == {"trajectory", "catalogue", "basins", "stability", "dcrit",
-                                   "bifurcation", "map", "design"}
-    assert SWEEP_KINDS == ("basins", "stability", "map")
+                                   "bifurcation", "map", "tipping", "design"}
+    assert SWEEP_KINDS == ("basins", "stability", "map", "tipping")
     for name, kind in KINDS.items():
         assert kind.name == name and kind.description and callable(kind.read)
         assert kind.sweep == (kind.run is None)
@@ -60,7 +60,7 @@ def test_every_kind_reads_its_example_and_plans_it(name):
 def test_a_kind_without_a_check_names_those_with_one():
     scene = parse_scene(example_scene("trajectory"), "t.toml")
     with pytest.raises(ValueError, match="check covers the kinds basins, stability, dcrit, "
-                                         "bifurcation, map, not 'trajectory'"):
+                                         "bifurcation, map, tipping, not 'trajectory'"):
         check_scene(scene)
 
 
@@ -133,7 +133,7 @@ def test_sweep_kinds_refuse_resume_for_the_others(tmp_path):
     (tmp_path / "t.toml").write_text(example_scene("trajectory"))
     result = CliRunner().invoke(main, ["sweep", str(tmp_path / "t.toml"), "--resume"])
     assert result.exit_code == 2
-    assert "--resume is for sweeps (kinds basins, stability, map); a trajectory reruns " \
+    assert "--resume is for sweeps (kinds basins, stability, map, tipping); a trajectory reruns " \
            "whole" in result.output
 
 

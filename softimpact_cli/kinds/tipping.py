@@ -1,0 +1,123 @@
+"""[analysis] kind = "tipping": where the basins and the solutions go when the parameters
+jump from one point to another (``analysis.tipping``).
+
+A sweep kind: the [initial_conditions] (a plane or random samples) at exactly two [grid]
+points, the first "before" and the second "after" (``[grid] panels = [{d = 22.0}, {d =
+6.0}]``); chunked, resumable and verified like basins. After the sweep it adds the
+tipping probabilities (basin overlap, rows: labels before, columns: labels after, with
+95% Wilson intervals) and where each solution present before goes (its section points at
+t = 0 mod T labelled at the second point).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..config.reader import ConfigError
+from . import AnalysisKind, PlotOption, PlotSpec, Sections
+from .sweeps import SHOW_ERROR, _reader, check, compare, compare_text, outcome_counts, plan, shrink
+from .sweeps import sections as sweep_sections
+from .sweeps import summary as sweep_summary
+
+
+def sections(analysis, ctx) -> Sections:
+    read = sweep_sections(analysis, ctx)
+    if read.grid.size != 2:
+        raise ConfigError(f"{ctx.source}: [grid]: kind 'tipping' needs exactly 2 grid points "
+                          f"(before and after, e.g. panels = [{{d = 22.0}}, {{d = 6.0}}]), "
+                          f"got {read.grid.size}")
+    return read
+
+
+def tipping_shrink(analysis, grid, axis: int):
+    """--quick keeps both points (the planes and samples shrink as for every kind)."""
+    return analysis, grid, ""
+
+
+def add_tipping(ds, scene, catalogue):
+    """The sweep's extra variables: the tipping matrix and the solutions' destinations."""
+    import xarray as xr
+
+    from ..analysis.labels import Label
+    from ..analysis.tipping import attractor_destinations, tipping_probabilities
+    from ..report.info import grid_dims
+
+    dims = grid_dims(ds)
+    ic_dims = str(ds.attrs["ic_dims"]).split()
+    label = ds["label"].transpose(*dims, *ic_dims).values.reshape(2, -1)
+    codes = [int(c) for c in ds["label_code"].values]
+    table = dict(zip(codes, (str(n) for n in ds["label_name"].values), strict=True))
+    matrix = tipping_probabilities(label[0], label[1], table)
+    present = {table[int(c)] for c in np.unique(label[0])}
+    if scene.system.bodies == 2:
+        orbits = {c.name: c.orbit for c in catalogue.combinations if c.name in present}
+    else:
+        orbits = {Label("body", a.period, a.number).name: a.points
+                  for a in catalogue.attractors
+                  if Label("body", a.period, a.number).name in present}
+    after = scene.grid.point(1)
+    destinations = attractor_destinations(orbits, lambda states: _labels_at(scene, after,
+                                                                            states))
+    sources = list(destinations)
+    depth = max((len(v) for v in destinations.values()), default=0)
+    dest = np.full((len(sources), depth), "", dtype=object)
+    for i, name in enumerate(sources):
+        dest[i, :len(destinations[name])] = destinations[name]
+    extra = xr.Dataset({"tip_destination": (("tip_solution", "tip_point"), dest.astype(str),
+                                            {"long_name": "label after of each section "
+                                                          "point of the solution before "
+                                                          "('' past its period)"})},
+                       coords={"tip_solution": sources})
+    out = xr.merge([ds, matrix, extra], combine_attrs="override")
+    out.attrs["tip_before"] = _point_text(scene, 0)
+    out.attrs["tip_after"] = _point_text(scene, 1)
+    return out
+
+
+def _point_text(scene, index: int) -> str:
+    point = scene.grid.point(index)
+    return ", ".join(f"{a} = {v:g}" for a, v in point.items()
+                     if a in scene.grid.swept or a in ("d", "phi"))
+
+
+def _labels_at(scene, point: dict, states: np.ndarray) -> list[str]:
+    """Label names of ``states`` (imposed at t = 0) at the parameter ``point``."""
+    from ..config.sweep import Grid
+    from ..sweep import sweep_in_memory
+
+    grid = Grid({a: (float(v),) for a, v in {**point, "t0": 0.0}.items()}, ())
+    ic = replace(scene.initial_conditions, kind="list", axes=(), ranges=(), resolution=(),
+                 fixed=None, box=None, n=0, states=tuple(map(tuple, states.tolist())),
+                 t0=0.0)
+    sub = replace(scene, grid=grid, initial_conditions=ic,
+                  analysis=replace(scene.analysis, kind="basins"))
+    ds = sweep_in_memory(sub, workers=1)
+    table = {int(c): str(n) for c, n in zip(ds["label_code"].values,
+                                            ds["label_name"].values, strict=True)}
+    return [table[int(c)] for c in ds["label"].values.ravel()]
+
+
+def summary(ds) -> dict:
+    from ..report.tipping import tipping_summary
+
+    return {**sweep_summary(ds), "tipping": tipping_summary(ds)}
+
+
+def info_after(ds) -> list[str]:
+    from ..report.tipping import tipping_lines
+
+    return tipping_lines(ds)
+
+
+KINDS = (AnalysisKind(
+    "tipping", "tipping probabilities: where basins and solutions go between two points",
+    _reader("tipping"), plan, sections=sections, shrink=tipping_shrink, check=check,
+    summary=summary, after_sweep=add_tipping, info_after=info_after,
+    outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
+    progress_unit="trajectories",
+    plot=PlotSpec("The tipping matrix of a tipping RESULT (and, over a plane, the basins "
+                  "before and after).", complete=True,
+                  options=(PlotOption("--no-basins", "no_basins", "Leave out the basin "
+                                      "panels.", kind="flag"), SHOW_ERROR))),)
