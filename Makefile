@@ -120,12 +120,18 @@ tipping: $(STAMP)
 		--overwrite $(QUICKFLAG)
 	$(SI) plot tipping results/tipping_duffing_d22_to_6.h5 -o results/tipping_duffing_d22_to_6.png
 
+# Minimal fatal shock of figure 6(d)'s dominant solution (README).
+fatal-shock: $(STAMP)
+	$(SI) sweep configs/fatal_shock_duffing_6d.toml -o results/fatal_shock_duffing_6d.h5 \
+		--overwrite $(QUICKFLAG)
+	$(SI) plot fatal_shock results/fatal_shock_duffing_6d.h5 -o results/fatal_shock_duffing_6d.png
+
 $(BASIN_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot basins results/$@.h5 -o results/$@.png
 
 
-.PHONY: figures map-d-phi tipping fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
+.PHONY: figures map-d-phi tipping fatal-shock fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
 # Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.

@@ -181,6 +181,23 @@ resolution = [20, 20]
 [output]
 path = "results/example_tipping.h5"
 """,
+    "fatal_shock": """\
+[system]
+model = "duffing"
+bodies = 1
+
+[analysis]
+kind = "fatal_shock"       # the smallest kick that sends a solution to another attractor
+solution = "L1^1"          # a label name of the catalogue
+phases = 4                 # phases along its orbit
+directions = 16            # shock directions (random for a pair, even angles for a body)
+max_shock = 24.0           # largest magnitude scanned ...
+scan = 24                  # ... in this many steps, then bisection ...
+tol = 1e-3                 # ... to this width
+
+[output]
+path = "results/example_fatal_shock.h5"
+""",
     "design": """\
 [system]
 model = "duffing"

@@ -11,8 +11,6 @@ t = 0 mod T labelled at the second point).
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from ..config.reader import ConfigError
@@ -42,6 +40,7 @@ def add_tipping(ds, scene, catalogue):
 
     from ..analysis.labels import Label
     from ..analysis.tipping import attractor_destinations, tipping_probabilities
+    from ..sweep import label_states
     from ..report.info import grid_dims
 
     dims = grid_dims(ds)
@@ -58,8 +57,8 @@ def add_tipping(ds, scene, catalogue):
                   for a in catalogue.attractors
                   if Label("body", a.period, a.number).name in present}
     after = scene.grid.point(1)
-    destinations = attractor_destinations(orbits, lambda states: _labels_at(scene, after,
-                                                                            states))
+    destinations = attractor_destinations(orbits, lambda states: label_states(
+        scene, after, states, 0.0))
     sources = list(destinations)
     depth = max((len(v) for v in destinations.values()), default=0)
     dest = np.full((len(sources), depth), "", dtype=object)
@@ -80,23 +79,6 @@ def _point_text(scene, index: int) -> str:
     point = scene.grid.point(index)
     return ", ".join(f"{a} = {v:g}" for a, v in point.items()
                      if a in scene.grid.swept or a in ("d", "phi"))
-
-
-def _labels_at(scene, point: dict, states: np.ndarray) -> list[str]:
-    """Label names of ``states`` (imposed at t = 0) at the parameter ``point``."""
-    from ..config.sweep import Grid
-    from ..sweep import sweep_in_memory
-
-    grid = Grid({a: (float(v),) for a, v in {**point, "t0": 0.0}.items()}, ())
-    ic = replace(scene.initial_conditions, kind="list", axes=(), ranges=(), resolution=(),
-                 fixed=None, box=None, n=0, states=tuple(map(tuple, states.tolist())),
-                 t0=0.0)
-    sub = replace(scene, grid=grid, initial_conditions=ic,
-                  analysis=replace(scene.analysis, kind="basins"))
-    ds = sweep_in_memory(sub, workers=1)
-    table = {int(c): str(n) for c, n in zip(ds["label_code"].values,
-                                            ds["label_name"].values, strict=True)}
-    return [table[int(c)] for c in ds["label"].values.ravel()]
 
 
 def summary(ds) -> dict:

@@ -332,6 +332,13 @@ def tipping(ds, ax=None, *, no_basins: bool = False, show_error: bool = False) -
     return error_note(fig, ds) if show_error else fig
 
 
+def fatal_shock(ds, ax=None) -> Figure:
+    """The fatal shocks of a solution against the phase of its orbit (one panel)."""
+    from .fatal_shock_figure import draw_fatal_shock
+
+    return draw_fatal_shock(_expect(ds, "fatal_shock"), ax)
+
+
 def design(ds, ax=None) -> Figure:
     """The (d, phi) plane with the target-only region, a zoom around the pick, the
     basin stability at the pick, the perturbations."""
@@ -341,7 +348,7 @@ def design(ds, ax=None) -> Figure:
 
 
 KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
-         "tipping", "design")  # the functions above, by analysis kind
+         "tipping", "fatal_shock", "design")  # the functions above, by analysis kind
 
 
 def _expect(ds, kind: str):

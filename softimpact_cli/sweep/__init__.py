@@ -15,7 +15,7 @@ import importlib
 # the runner imports the analyses and the kernels: only when a sweep runs, so that the
 # CLI's signal handling (sweep.interrupt) costs no kernel import
 _NAMES = {"prepare_catalogues": "runner", "run_sweep": "runner",
-          "sweep_in_memory": "in_memory"}
+          "sweep_in_memory": "in_memory", "label_states": "in_memory"}
 
 __all__ = sorted(_NAMES)
 

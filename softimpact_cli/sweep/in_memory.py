@@ -61,3 +61,25 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
                      "plan": plan.describe(), "executor": executor.describe(), "resumed": 0,
                      "sessions": 1, "history": history_line(started), "complete": 1})
     return ds
+
+
+def label_states(scene: Scene, point: dict, states: np.ndarray, t0: float = 0.0,
+                 workers: int | None = 1) -> list[str]:
+    """Label names of ``states`` (n, dim), imposed at time ``t0``, at the parameter
+    ``point`` ({axis: value} over d, phi, k_c, c_c) of ``scene``'s system, with its
+    integrator and catalogue settings: a basins sweep over that list of states."""
+    from dataclasses import replace
+
+    from ..config.sweep import Grid
+
+    values = {**point, "t0": float(t0)}  # axes not in point keep the grid's first value
+    grid = Grid({a: (float(values.get(a, v[0])),) for a, v in scene.grid.axes.items()}, ())
+    ic = replace(scene.initial_conditions, kind="list", axes=(), ranges=(), resolution=(),
+                 fixed=None, box=None, n=0, states=tuple(map(tuple, np.asarray(
+                     states, dtype=float).tolist())), t0=float(t0))
+    sub = replace(scene, grid=grid, initial_conditions=ic,
+                  analysis=replace(scene.analysis, kind="basins"))
+    ds = sweep_in_memory(sub, workers=workers)
+    table = {int(c): str(n) for c, n in zip(ds["label_code"].values,
+                                            ds["label_name"].values, strict=True)}
+    return [table[int(c)] for c in ds["label"].values.ravel()]

@@ -1,0 +1,151 @@
+"""[analysis] kind = "fatal_shock": the minimal fatal shock of one solution
+(``analysis.fatal_shock``): the smallest kick of the state, at some phase of its orbit,
+that sends the system to another attractor."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..config.limits import MAX_SEED
+from ..config.reader import positive
+from ..config.sweep import read_catalogue
+from . import AnalysisKind, PlotSpec, Sections
+
+
+@dataclass(frozen=True)
+class FatalShockAnalysis:
+    """The [analysis] keys: ``solution`` (a label name of the catalogue, e.g. "L1^1
+    R1-0^1"), ``phases`` along its orbit, ``directions`` (random unit vectors of the state
+    space, equally spaced angles for one body), ``max_shock`` (largest magnitude
+    scanned), ``scan`` (magnitudes scanned per direction), ``tol`` (bisection width),
+    ``seed`` (of the directions)."""
+
+    kind: str
+    solution: str
+    phases: int = 8
+    directions: int = 48
+    max_shock: float = 5.0
+    scan: int = 12
+    tol: float = 1e-3
+    seed: int = 0
+
+
+def read(sec, ctx) -> FatalShockAnalysis:
+    if not sec.has("solution"):
+        raise sec.fail("solution", "is required: the label name of the solution to shake, "
+                                   "e.g. \"L1^1 R1-0^1\" (`softimpact sweep` of a catalogue "
+                                   "scene lists them)")
+    solution = sec.raw("solution")
+    if not isinstance(solution, str) or not solution.strip():
+        raise sec.fail("solution", f"must be a label name like \"L1^1 R1-0^1\", got "
+                                   f"{solution!r}")
+    return FatalShockAnalysis(
+        kind="fatal_shock", solution=solution.strip(),
+        phases=sec.integer("phases", 8, 1, 1000),
+        directions=sec.integer("directions", 48, 1, 100_000),
+        max_shock=sec.number("max_shock", 5.0, positive),
+        scan=sec.integer("scan", 12, 1, 10_000),
+        tol=sec.number("tol", 1e-3, positive),
+        seed=sec.integer("seed", 0, 0, MAX_SEED))
+
+
+def sections(analysis, ctx) -> Sections:
+    ctx.refuse("grid", "initial_conditions")
+    return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
+                                                       ctx.system.extra["catalogue_box"]))
+
+
+def solution_orbit(scene, catalogue) -> np.ndarray:
+    """The section points (t = 0 mod T) of the scene's solution in its catalogue."""
+    from ..analysis.labels import Label
+    from ..config.reader import ConfigError
+
+    if scene.system.bodies == 2:
+        found = {c.name: c.orbit for c in catalogue.combinations}
+    else:
+        found = {Label("body", a.period, a.number).name: a.points
+                 for a in catalogue.attractors}
+    name = scene.analysis.solution
+    if name not in found:
+        raise ConfigError(f"{scene.source}: [analysis] solution: {name!r} is not in the "
+                          f"catalogue at this point; one of {', '.join(map(repr, found))}")
+    return np.asarray(found[name], dtype=float)
+
+
+def run(scene, progress=None, workers=None, **_):
+    from ..analysis.catalogue import scene_catalogue
+    from ..analysis.engine import Problem, record_trajectory
+    from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
+    from ..config.sweep import GRID_AXES
+    from ..sweep import label_states
+
+    a = scene.analysis
+    catalogue = scene_catalogue(scene)
+    start = solution_orbit(scene, catalogue)[0]
+    problem = Problem(scene.system, scene.values, scene.integrator)
+    T = problem.period
+    traj = record_trajectory(problem, start, 0.0, 1, a.phases)
+    orbit, times = traj.y[: a.phases], traj.t[: a.phases]
+    names = tuple(scene.system.state_names)
+    directions = unit_directions(a.directions, len(names),
+                                 None if len(names) == 2 else a.seed)
+    point = {k: float(scene.values[k]) for k in GRID_AXES if k in scene.values}
+    sweepable = replace_for_labels(scene, point, names)
+    tick = progress(a.phases) if progress else None
+
+    def label(states, k):
+        out = label_states(sweepable, point, states, float(times[k]), workers)
+        if tick and k == label.phase + 1:
+            tick(1)
+        label.phase = max(label.phase, k)
+        return out
+
+    label.phase = -1
+    ds = fatal_shock_dataset(orbit, times, a.solution, label, directions, a.max_shock,
+                             a.scan, a.tol, names)
+    if tick:
+        tick(1)
+    ds.attrs["forcing_period"] = T
+    return ds
+
+
+def replace_for_labels(scene, point: dict, names: tuple[str, ...]):
+    """The scene as ``sweep.label_states`` needs it: a one-point grid and a list of
+    initial conditions (replaced by each call), basins analysis."""
+    from dataclasses import replace
+
+    from ..config.sweep import GRID_AXES, Grid, InitialConditions
+    from .sweeps import SweepAnalysis
+
+    grid = Grid({k: (float(point.get(k, 0.0)),) for k in GRID_AXES}, ())
+    ic = InitialConditions(kind="list", state_names=names, states=((0.0,) * len(names),))
+    return replace(scene, grid=grid, initial_conditions=ic,
+                   analysis=SweepAnalysis(kind="basins"))
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    a = scene.analysis
+    return (f"fatal_shock: {a.solution}: {a.phases} phases x {a.directions} directions, "
+            f"{a.scan} magnitudes up to {a.max_shock:g}, bisection to {a.tol:g}")
+
+
+def summary(ds) -> dict:
+    from ..report.fatal_shock import fatal_shock_summary
+
+    return fatal_shock_summary(ds)
+
+
+def info_lines(ds) -> list[str]:
+    from ..report.fatal_shock import fatal_shock_lines
+
+    return fatal_shock_lines(ds)
+
+
+KINDS = (AnalysisKind(
+    "fatal_shock", "minimal fatal shock: the smallest kick that sends a solution elsewhere",
+    read, plan, sections=sections, run=run, summary=summary, info_lines=info_lines,
+    info_catalogue=False, options=("workers",), progress_unit="phases",
+    plot=PlotSpec("The fatal shocks of a fatal_shock RESULT against the phase of the "
+                  "orbit: the smallest over directions, the median and the quartiles.")),)
