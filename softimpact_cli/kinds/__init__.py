@@ -28,7 +28,8 @@ from ..config.reader import ConfigError, Section
 from ..systems import System
 
 # the modules declaring kinds, in the order `--help` lists them
-MODULES = ("trajectory", "catalogue", "sweeps", "dcrit", "bifurcation", "design")
+MODULES = ("trajectory", "catalogue", "sweeps", "dcrit", "bifurcation", "design",
+           "fractality")
 
 
 @dataclass(frozen=True)
@@ -214,7 +215,7 @@ def _load() -> dict[str, AnalysisKind]:
 
 _LOADED = _load()
 _ORDER = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
-          "design")  # the order messages and --help list them in; new kinds follow
+          "design", "fractality")  # the order messages and --help list them in; new kinds follow
 KINDS: dict[str, AnalysisKind] = {name: _LOADED[name] for name in _ORDER if name in _LOADED}
 KINDS.update({name: kind for name, kind in _LOADED.items() if name not in KINDS})
 ANALYSIS_KINDS = tuple(KINDS)
