@@ -27,6 +27,21 @@ def ln2_verdict(sbb: float, n_basins: int) -> str:
     return "fractal (S_bb > ln 2)" if sbb > LN2 else "undecided (S_bb <= ln 2)"
 
 
+def fit_note(p) -> str | None:
+    """Why alpha of one plane (a row of the result) is to be read with care, or None."""
+    f = p["uncertain_fraction"].values[p["in_fit"].values]
+    if f.size and f.max() > 0.5:
+        return ("saturated: over half the plane is uncertain at the largest radius, so "
+                "alpha is biased low (D high); a finer plane or smaller radii are needed")
+    halves = (float(p["alpha_small"]), float(p["alpha_large"]))
+    if all(math.isfinite(h) for h in halves) and abs(halves[0] - halves[1]) > 0.2:
+        return "curved: the two halves of the radii differ by more than 0.2"
+    if int(p["n_basins"]) >= 2 and float(p["label_share"].where(p["label_share"] > 0)
+                                         .min()) * p.sizes["row"] * p.sizes["col"] < 50:
+        return "a basin of fewer than 50 cells: its boundary is a few points, not a curve"
+    return None
+
+
 def fractality_summary(ds) -> dict:
     """{"fractality": [one dict per plane]}: the measures with their intervals."""
     sizes = [int(n) for n in ds["box_size"].values]
@@ -53,6 +68,7 @@ def fractality_summary(ds) -> dict:
             "dimension": _num(p["dimension"]),
             "dimension_ci95": [_num(p["dimension_ci_low"]), _num(p["dimension_ci_high"])],
             "fit_radii": [_num(p["fit_radius_min"]), _num(p["fit_radius_max"])],
+            "fit_note": fit_note(p),
             "wada": str(p["verdict"].values),
             "wada_radius": int(p["wada_radius_found"]),
             "wada_fraction": _num(p["wada_fraction"].values[-1]),
@@ -90,14 +106,20 @@ def fractality_lines(ds) -> list[str]:
             else ("t0",)  # one body: no coupling
         where = ", ".join(f"{a}={p[a]:.6g}" for a in axes if a in p)
         shares = ", ".join(f"{k} {v:.3f}" for k, v in p["label_shares"].items())
-        out.append(f"  {where}: {p['n_basins']} basins ({shares})")
+        out.append(f"  {where}: {p['n_basins']} basin{'s' * (p['n_basins'] != 1)} "
+                   f"({shares})")
         out.append("    S_b  " + "  ".join(f"n={n}: {_f(p['S_b'][str(n)])}" for n in shown))
         out.append("    S_bb " + "  ".join(f"n={n}: {_f(p['S_bb'][str(n)])}" for n in shown)
                    + f"  -> {p['ln2_criterion']}")
-        out.append(f"    alpha {_f(p['alpha'])} {_interval(p['alpha_ci95'])} (halves "
-                   f"{_f(p['alpha_halves'][0])}, {_f(p['alpha_halves'][1])}; r "
-                   f"{_f(p['fit_radii'][0], '.0f')}..{_f(p['fit_radii'][1], '.0f')}); "
-                   f"D = {_f(p['dimension'])} {_interval(p['dimension_ci95'])}")
+        if p["alpha"] is None:
+            out.append("    alpha -: no uncertain cell at any radius (no boundary)")
+        else:
+            out.append(f"    alpha {_f(p['alpha'])} {_interval(p['alpha_ci95'])} (halves "
+                       f"{_f(p['alpha_halves'][0])}, {_f(p['alpha_halves'][1])}; r "
+                       f"{_f(p['fit_radii'][0], '.0f')}..{_f(p['fit_radii'][1], '.0f')}); "
+                       f"D = {_f(p['dimension'])} {_interval(p['dimension_ci95'])}")
+        if p["fit_note"]:
+            out.append(f"    note: {p['fit_note']}")
         wada = p["wada"]
         if wada != "n/a":
             at = f" at r = {p['wada_radius']}" if p["wada_radius"] > 0 else ""

@@ -21,7 +21,6 @@ def basins_dataset(analysis: str = "basins") -> xr.Dataset:
     label = np.stack([newton_basins(SIDE), sectors(SIDE)]).astype(np.int32)
     label = np.where(label == 2, 1000 + 1, label)  # a code as impacting P1 has
     axis = np.linspace(-2.0, 2.0, SIDE)
-    panel = ("panel", np.arange(2))
     return xr.Dataset(
         {"label": (("panel", "x1", "x2"), label),
          "label_code": (("label_index",), np.array([0, 1, 1001], dtype=np.int32)),
@@ -144,3 +143,21 @@ def test_the_scene_kind_sweeps_verifies_and_measures(tmp_path):
     assert ds.attrs["analysis"] == "fractality" and ds.sizes["point"] == 1
     assert ds.attrs["verify_status"] in ("ok", "inconclusive")  # the sweep's own check
     assert int(ds["n_basins"].values[0]) == 2 and str(ds["verdict"].values[0]) == "n/a"
+
+
+def test_info_says_when_the_fit_is_not_to_be_trusted():
+    from softimpact_cli.report.fractality import fractality_summary
+
+    noise = np.random.default_rng(1).integers(0, 2, (1, 40, 40)).astype(np.int32)
+    ds = basins_dataset().isel(panel=[0], x1=slice(0, 40), x2=slice(0, 40))
+    ds["label"] = (("panel", "x1", "x2"), noise)
+    salt = si.measure(ds)  # salt and pepper: every window of two labels at once
+    assert "saturated" in fractality_summary(salt)["fractality"][0]["fit_note"]
+    few = np.zeros((1, 40, 40), dtype=np.int32)
+    few[0, 20, 20] = 1  # one cell of another basin: its boundary is a point
+    ds["label"] = (("panel", "x1", "x2"), few)
+    point = fractality_summary(si.measure(ds))["fractality"][0]
+    assert point["fit_note"].startswith("a basin of fewer than 50 cells")
+    assert point["dimension"] < 0.5
+    smooth = fractality_summary(si.measure(basins_dataset()))["fractality"]
+    assert smooth[1]["fit_note"] is None  # the sectors
