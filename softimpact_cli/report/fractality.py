@@ -16,15 +16,31 @@ def _num(value) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def ln2_verdict(sbb: float, n_basins: int) -> str:
-    """What S_bb says of the boundary by the ln 2 criterion (Daza et al. 2016)."""
+def ln2_verdict(sizes, sbb, n_basins: int, side: int) -> str:
+    """What S_bb says of the boundary by the ln 2 criterion (Daza et al. 2016), from its
+    values ``sbb`` at the box sizes ``sizes`` (cells) on a plane of ``side`` cells.
+
+    The criterion is sufficient only for boxes small beside the boundary's features: a
+    box over a junction of three smooth boundaries holds three basins and can exceed
+    ln 2 too, so a verdict that rests on boxes over a tenth of the plane says so."""
     if n_basins < 2:
         return "no boundary"
     if n_basins == 2:  # one box of two labels has entropy <= ln 2
         return "undecided (two basins: S_bb <= ln 2 always)"
-    if not math.isfinite(sbb):
-        return "no boundary box"
-    return "fractal (S_bb > ln 2)" if sbb > LN2 else "undecided (S_bb <= ln 2)"
+    holds = [int(n) for n, v in zip(sizes, sbb, strict=True) if math.isfinite(v) and v > LN2]
+    if not holds:
+        return "undecided (S_bb <= ln 2 at every box size)"
+    runs: list[list[int]] = []
+    for n in holds:  # "2-5, 9": runs of consecutive box sizes
+        if runs and n == runs[-1][-1] + 1:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    where = ", ".join(f"{r[0]}-{r[-1]}" if len(r) > 1 else str(r[0]) for r in runs)
+    if min(holds) * 10 > side:
+        return (f"inconclusive (S_bb > ln 2 only at n = {where}, boxes over a tenth of the "
+                "plane, as junctions of smooth boundaries give too)")
+    return f"fractal (S_bb > ln 2 at n = {where})"
 
 
 def fit_note(p) -> str | None:
@@ -60,8 +76,8 @@ def fractality_summary(ds) -> dict:
             "S_b": {str(n): _num(v) for n, v in zip(sizes, p["S_b"].values, strict=True)},
             "S_bb": {str(n): _num(v) for n, v in zip(sizes, sbb, strict=True)},
             "S_bb_max": _num(np.nanmax(sbb)) if np.isfinite(sbb).any() else None,
-            "ln2_criterion": ln2_verdict(float(np.nanmax(sbb)) if np.isfinite(sbb).any()
-                                         else math.nan, n_basins),
+            "ln2_criterion": ln2_verdict(sizes, sbb, n_basins,
+                                         min(ds.sizes["row"], ds.sizes["col"])),
             "alpha": _num(p["alpha"]), "alpha_stderr": _num(p["alpha_stderr"]),
             "alpha_ci95": [_num(p["alpha_ci_low"]), _num(p["alpha_ci_high"])],
             "alpha_halves": [_num(p["alpha_small"]), _num(p["alpha_large"])],

@@ -161,3 +161,17 @@ def test_info_says_when_the_fit_is_not_to_be_trusted():
     assert point["dimension"] < 0.5
     smooth = fractality_summary(si.measure(basins_dataset()))["fractality"]
     assert smooth[1]["fit_note"] is None  # the sectors
+
+
+def test_the_ln2_verdict_names_its_box_sizes_and_distrusts_coarse_boxes():
+    from softimpact_cli.report.fractality import LN2, ln2_verdict
+
+    high, low = LN2 + 0.1, LN2 - 0.1
+    sizes = [2, 3, 4, 5, 9, 20]
+    assert ln2_verdict(sizes, [high] * 4 + [low, high], 3, 100) == \
+        "fractal (S_bb > ln 2 at n = 2-5, 20)"
+    assert ln2_verdict(sizes, [low] * 5 + [high], 3, 100).startswith(
+        "inconclusive (S_bb > ln 2 only at n = 20, boxes over a tenth")
+    assert ln2_verdict(sizes, [high] * 6, 2, 100).startswith("undecided (two basins")
+    assert ln2_verdict(sizes, [low] * 6, 4, 100) == "undecided (S_bb <= ln 2 at every box size)"
+    assert ln2_verdict(sizes, [float("nan")] * 6, 1, 100) == "no boundary"
