@@ -45,6 +45,10 @@ def ln2_verdict(sizes, sbb, n_basins: int, side: int) -> str:
 
 def fit_note(p) -> str | None:
     """Why alpha of one plane (a row of the result) is to be read with care, or None."""
+    others = (1.0 - float(p["label_share"].max())) * p.sizes["row"] * p.sizes["col"]
+    if int(p["n_basins"]) >= 2 and others < 50:
+        return ("the basins besides the largest hold fewer than 50 cells: the boundary is "
+                "a few points, not a curve")
     f = p["uncertain_fraction"].values[p["in_fit"].values]
     if f.size and f.max() > 0.5:
         return ("saturated: over half the plane is uncertain at the largest radius, so "
@@ -52,9 +56,6 @@ def fit_note(p) -> str | None:
     halves = (float(p["alpha_small"]), float(p["alpha_large"]))
     if all(math.isfinite(h) for h in halves) and abs(halves[0] - halves[1]) > 0.2:
         return "curved: the two halves of the radii differ by more than 0.2"
-    if int(p["n_basins"]) >= 2 and float(p["label_share"].where(p["label_share"] > 0)
-                                         .min()) * p.sizes["row"] * p.sizes["col"] < 50:
-        return "a basin of fewer than 50 cells: its boundary is a few points, not a curve"
     return None
 
 

@@ -157,7 +157,7 @@ def test_info_says_when_the_fit_is_not_to_be_trusted():
     few[0, 20, 20] = 1  # one cell of another basin: its boundary is a point
     ds["label"] = (("panel", "x1", "x2"), few)
     point = fractality_summary(si.measure(ds))["fractality"][0]
-    assert point["fit_note"].startswith("a basin of fewer than 50 cells")
+    assert point["fit_note"].startswith("the basins besides the largest hold fewer than 50")
     assert point["dimension"] < 0.5
     smooth = fractality_summary(si.measure(basins_dataset()))["fractality"]
     assert smooth[1]["fit_note"] is None  # the sectors
