@@ -141,7 +141,8 @@ fractality-fig13: configs/figures/fig13_bilinear_basins.toml
 fractality-fig14ab: configs/figures/fig14ab_bilinear_impacting.toml
 $(FRACTALITY): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/fractality/$(@:fractality-%=%).h5 --overwrite -q \
-		$(if $(QUICK),--quick,--resolution $(if $(filter fractality-fig03 fractality-fig09,$@),$(FRACTAL_RES_ONE),$(FRACTAL_RES)))
+		$(QUICKFLAG) $(if $(QUICK),,--resolution $(if $(filter fractality-fig03 \
+		fractality-fig09,$@),$(FRACTAL_RES_ONE),$(FRACTAL_RES)))
 	$(SI) measure results/fractality/$(@:fractality-%=%).h5 \
 		-o results/fractality/$(@:fractality-%=%)_measures.h5 --overwrite
 	$(SI) plot fractality results/fractality/$(@:fractality-%=%)_measures.h5 \
