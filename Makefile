@@ -136,7 +136,7 @@ FRACTALITY := fractality-fig03 fractality-fig09 fractality-fig09-zoom fractality
 fractality: $(FRACTALITY)
 fractality-fig03: configs/figures/fig03_duffing_single_basins.toml
 fractality-fig09: configs/figures/fig09_bilinear_single_basins.toml
-fractality-fig09-zoom: configs/fig09_zoom_basins.toml
+fractality-fig09-zoom: configs/fractality/fig09_zoom_basins.toml
 fractality-fig06: configs/figures/fig06_duffing_basins.toml
 fractality-fig12: configs/figures/fig12_bilinear_basins.toml
 fractality-fig13: configs/figures/fig13_bilinear_basins.toml
