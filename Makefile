@@ -133,6 +133,36 @@ $(BASIN_FIGS): $(STAMP)
 
 .PHONY: figures map-d-phi tipping fatal-shock fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
+# How fractal are the basins (issue 17; README "How fractal are the basins"): each plane of
+# figures 3, 9 and a zoom of 9 (one body, FRACTAL_RES_ONE cells per side at most) and of
+# the coupled figures 6, 12, 13, 14(a-b) (FRACTAL_RES per side) swept, then measured: basin
+# entropy against the box size, uncertainty exponent with its fit interval, Wada test.
+# Results in results/fractality/ (<fig>.h5 the basins, <fig>_measures.h5 + .png the
+# measures); about 15 min on a busy 2-core machine at the defaults (figure 12 ~6 min).
+# FRACTAL_RES_ONE=200: figure 9 alone ~25 min (its verification redoes it twice).
+# QUICK=1: 24 x 24 planes, a smoke test only (the measures need 100+ cells per side).
+FRACTAL_RES ?= 64
+FRACTAL_RES_ONE ?= 100
+FRACTALITY := fractality-fig03 fractality-fig09 fractality-fig09-zoom fractality-fig06 \
+	fractality-fig12 fractality-fig13 fractality-fig14ab
+fractality: $(FRACTALITY)
+fractality-fig03: configs/figures/fig03_duffing_single_basins.toml
+fractality-fig09: configs/figures/fig09_bilinear_single_basins.toml
+fractality-fig09-zoom: configs/fractality/fig09_zoom_basins.toml
+fractality-fig06: configs/figures/fig06_duffing_basins.toml
+fractality-fig12: configs/figures/fig12_bilinear_basins.toml
+fractality-fig13: configs/figures/fig13_bilinear_basins.toml
+fractality-fig14ab: configs/figures/fig14ab_bilinear_impacting.toml
+$(FRACTALITY): $(STAMP)
+	$(SI) sweep $(filter %.toml,$^) -o results/fractality/$(@:fractality-%=%).h5 --overwrite -q \
+		$(QUICKFLAG) $(if $(QUICK),,--resolution $(if $(filter fractality-fig03 \
+		fractality-fig09 fractality-fig09-zoom,$@),$(FRACTAL_RES_ONE),$(FRACTAL_RES)))
+	$(SI) measure results/fractality/$(@:fractality-%=%).h5 \
+		-o results/fractality/$(@:fractality-%=%)_measures.h5 --overwrite
+	$(SI) plot fractality results/fractality/$(@:fractality-%=%)_measures.h5 \
+		-o results/fractality/$(@:fractality-%=%)_measures.png
+.PHONY: fractality $(FRACTALITY)
+
 # Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.
 DESIGNS := design-duffing design-bilinear

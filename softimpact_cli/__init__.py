@@ -14,9 +14,18 @@ __version__ = "0.1.0"
 # later. So ``softimpact_cli.sweep`` is the function; ``from softimpact_cli.sweep import
 # run_sweep`` works as before.
 from . import sweep as _sweep_package  # noqa: E402, F401
-from .api import ConfigError, load_scene, open_result, run, shrink_scene, sweep  # noqa: E402
+from .api import (  # noqa: E402
+    ConfigError,
+    load_scene,
+    measure,
+    open_result,
+    run,
+    shrink_scene,
+    sweep,
+)
 
-__all__ = ["ConfigError", "load_scene", "open_result", "plot", "run", "shrink_scene", "sweep"]
+__all__ = ["ConfigError", "load_scene", "measure", "open_result", "plot", "run", "shrink_scene",
+           "sweep"]
 
 
 def __getattr__(name: str):

@@ -395,6 +395,55 @@ def compare(result_a, result_b, max_label_change, max_share_change, max_d_change
         sys.exit(1)
 
 
+def _cells_option(ctx, param, value):
+    """"2,5,10" -> (2, 5, 10); None stays None (the analysis' default)."""
+    if value is None:
+        return None
+    try:
+        cells = tuple(int(v) for v in value.split(","))
+    except ValueError:
+        raise click.BadParameter(f"a comma-separated list of whole numbers of cells, got "
+                                 f"{value!r}") from None
+    if not cells or min(cells) < 1:
+        raise click.BadParameter(f"whole numbers of cells >= 1, got {value!r}")
+    return cells
+
+
+@main.command()
+@click.argument("result")
+@click.option("-o", "--output", required=True, help="Fractality result file (HDF5).")
+@click.option("--overwrite", is_flag=True, help="Replace an existing result file.")
+@click.option("--box-sizes", callback=_cells_option, default=None, metavar="N,N,...",
+              help="Basin-entropy box sizes in cells (default 2 .. min(20, side/4)).")
+@click.option("--radii", callback=_cells_option, default=None, metavar="R,R,...",
+              help="Uncertainty radii in cells (default about 12 over 1 .. side/10).")
+@click.option("--wada-radius", type=click.IntRange(1, 100), default=5, show_default=True,
+              help="Largest fattening of the merged boundaries in the Wada test (cells).")
+@click.option("--wada-tol", type=click.FloatRange(0, 1, max_open=True), default=0.05,
+              show_default=True, help="Largest mismatch share still called Wada.")
+@_user_errors
+def measure(result, output, overwrite, box_sizes, radii, wada_radius, wada_tol):
+    """How fractal the basins of RESULT (a basins result over a plane) are, per plane:
+    basin entropy S_b, S_bb against the box size with the ln 2 criterion, the uncertainty
+    exponent alpha and boundary dimension D = 2 - alpha with 95% fit intervals, and the
+    Wada merging test. Writes a fractality result (softimpact info / plot fractality);
+    README: "How fractal are the basins".
+
+    \b
+    Example:
+      softimpact sweep configs/figures/fig09_bilinear_single_basins.toml -o fig09.h5
+      softimpact measure fig09.h5 -o fig09_fractality.h5
+    """
+    from .api import measure as measure_result
+    from .report.fractality import fractality_lines
+
+    check_writable(output, "command line", "-o/--output")
+    ds = measure_result(result, output, box_sizes=box_sizes, radii=radii,
+                        wada_radius=wada_radius, wada_tol=wada_tol, overwrite=overwrite)
+    click.echo("\n".join(fractality_lines(ds)))
+    click.echo(f"fractality -> {output}")
+
+
 @main.command()
 @click.argument("kind", required=False)
 def example(kind):

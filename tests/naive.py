@@ -266,3 +266,48 @@ def duffing_pair_energy(y, par):
         n = par.get("exponent", 1.5)
         return e + par["k_c"] * delta ** (n + 1) / (n + 1)
     return e + 0.5 * par["k_c"] * delta**2
+
+
+# ---------------------------------------------------------------------------------------
+# basin planes with known answers, and a loop-by-loop basin entropy (analysis.basin_entropy)
+
+
+def newton_basins(n: int, half_width: float = 2.0, iterations: int = 40) -> np.ndarray:
+    """Basins of Newton's method for z^3 = 1 on an n x n grid of [-w, w]^2 (rows: Im z):
+    the index (0, 1, 2) of the cube root of unity each start ends nearest to."""
+    axis = np.linspace(-half_width, half_width, n)
+    z = axis[None, :] + 1j * axis[:, None]
+    for _ in range(iterations):
+        z = z - (z**3 - 1) / (3 * z**2 + (z == 0))  # z = 0 (never on an even grid) stays
+    roots = np.exp(2j * np.pi * np.arange(3) / 3)
+    return np.argmin(np.abs(z[..., None] - roots), axis=-1)
+
+
+def cantor_comb(base: int, kept: tuple[int, ...], level: int, rows: int) -> np.ndarray:
+    """Two basins split by a Cantor set of vertical lines: column i (of base**level) is in
+    basin 1 when every base-``base`` digit of i is in ``kept``. The boundary is C x [0, 1]
+    for the Cantor set C of ``kept`` digits: box-counting dimension
+    1 + ln(len(kept)) / ln(base), so alpha = 1 - ln(len(kept)) / ln(base)."""
+    i = np.arange(base**level)
+    inside = np.ones(i.size, dtype=bool)
+    for _ in range(level):
+        inside &= np.isin(i % base, kept)
+        i = i // base
+    return np.tile(inside.astype(np.int32), (rows, 1))
+
+
+def basin_entropy_loops(labels, n: int) -> tuple[float, float]:
+    """(S_b, S_bb) of Daza et al. 2016 box by box with Python loops: complete n x n boxes
+    from the first cell, p_j = share of label j in the box, S = -sum p ln p."""
+    labels = np.asarray(labels)
+    entropies = []
+    for top in range(0, labels.shape[0] - n + 1, n):
+        for left in range(0, labels.shape[1] - n + 1, n):
+            box = labels[top:top + n, left:left + n].ravel().tolist()
+            s = 0.0
+            for value in set(box):
+                p = box.count(value) / len(box)
+                s -= p * np.log(p)
+            entropies.append(s)
+    boundary = [s for s in entropies if s > 0]
+    return float(np.mean(entropies)), float(np.mean(boundary)) if boundary else float("nan")

@@ -6,6 +6,13 @@ per non-impacting solution, for all impacting solutions together and per impacti
 period, for the non-impacting sum, and for unresolved/diverged outcomes, each with a 95%
 Wilson score interval (the binomial interval that stays inside [0, 1] and behaves at
 shares near 0 or 1, unlike the normal approximation).
+
+The same sampling gives the basin entropy of the shares, H = - sum_j p_j ln p_j over
+the distinct outcomes (each label: every non-impacting solution, each impacting period,
+unresolved, diverged), with a 95% bootstrap interval (``basin_entropy.share_entropy``):
+how unpredictable the final state of one random start in the box is, ln K at most for K
+outcomes. The box-wise basin entropy S_b of a plane needs neighbouring starts at the
+boundary's scale, which random samples do not give; see ``basin_entropy``.
 """
 
 from __future__ import annotations
@@ -13,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from .basin_entropy import share_entropy
 from .labels import parse_label
 
 Z95 = 1.959963984540054
@@ -75,4 +83,17 @@ def basin_stability(ds: xr.Dataset, sample_dim: str = "sample") -> xr.Dataset:
         },
         attrs={"n": n, "interval": "95% Wilson score"},
     )
-    return out
+    return out.assign(_share_entropy(per_label))
+
+
+def _share_entropy(per_label: xr.DataArray) -> dict:
+    """H of the outcome shares and its 95% bootstrap interval at every grid point."""
+    counts = per_label.transpose(..., "label_index")
+    values = counts.values.reshape(-1, counts.sizes["label_index"])
+    h = np.array([share_entropy(row) for row in values]).reshape(*counts.shape[:-1], 3)
+    dims = counts.dims[:-1]
+    names = (("entropy", "basin entropy of the shares H"),
+             ("entropy_ci_low", "H, 95% bootstrap interval, low"),
+             ("entropy_ci_high", "H, 95% bootstrap interval, high"))
+    return {k: (dims, h[..., i], {"long_name": name, "units": "nat"})
+            for i, (k, name) in enumerate(names)}

@@ -220,6 +220,32 @@ seed = 15
 [output]
 path = "results/example_design.h5"
 """,
+    "fractality": """\
+[system]
+model = "bilinear"         # the study's fractal single body (figure 9)
+bodies = 1
+w = 0.86
+F = 0.518
+
+[analysis]
+kind = "fractality"        # sweep the plane, then basin entropy, alpha and the Wada test
+box_sizes = [2, 3, 4, 5, 6, 8, 10]   # basin-entropy boxes (cells; default 2 .. side/4)
+radii = [1, 2, 3, 4, 6]    # uncertainty radii (cells; default ~12 over 1 .. side/10)
+wada_radius = 5            # Wada test: fatten the merged boundaries up to 5 cells
+wada_tol = 0.05            # ... and call it Wada when at most 5% of one lies farther
+
+[initial_conditions]
+kind = "plane"
+axes = ["x", "v"]
+ranges = [[-2.5, 2.5], [-2.5, 2.5]]
+resolution = [40, 40]      # about 20 s; the measures need more (README: 100+ per side)
+
+[catalogue]
+box = { x = [-3.0, 3.0], v = [-3.0, 3.0] }
+
+[output]
+path = "results/example_fractality.h5"
+""",
 }
 
 def example(kind: str) -> str:

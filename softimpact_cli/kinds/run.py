@@ -35,7 +35,8 @@ def run_scene(scene: Scene, progress=None, **options) -> xr.Dataset:
     ds.attrs.update(attrs)
     from ..sweep.verification import not_applicable
 
-    ds.attrs["verify_status"] = not_applicable(kind)
+    # a kind that runs a sweep inside (fractality) keeps that sweep's verification
+    ds.attrs.setdefault("verify_status", not_applicable(kind))
     return ds
 
 

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..config.reader import ConfigError
 from . import AnalysisKind, PlotOption, PlotSpec, Sections
-from .sweeps import SHOW_ERROR, _reader, check, compare, compare_text, outcome_counts, plan, shrink
+from .sweeps import SHOW_ERROR, _reader, check, compare, compare_text, outcome_counts, plan
 from .sweeps import sections as sweep_sections
 from .sweeps import summary as sweep_summary
 
@@ -40,8 +40,8 @@ def add_tipping(ds, scene, catalogue):
 
     from ..analysis.labels import Label
     from ..analysis.tipping import attractor_destinations, tipping_probabilities
-    from ..sweep import label_states
     from ..report.info import grid_dims
+    from ..sweep import label_states
 
     dims = grid_dims(ds)
     ic_dims = str(ds.attrs["ic_dims"]).split()

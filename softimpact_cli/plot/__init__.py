@@ -347,8 +347,17 @@ def design(ds, ax=None) -> Figure:
     return draw_design(_expect(ds, "design"), ax)
 
 
+def fractality(ds, ax=None, *, max_panels: int = 8) -> Figure:
+    """Per plane (at most ``max_panels``; a row of three panels each): S_b and S_bb
+    against the box size with ln 2, the uncertainty exponent's log-log fit, the boundary
+    cells coloured by how many merged boundaries (Wada test) lie near them."""
+    from .fractality_figure import draw_fractality
+
+    return draw_fractality(_expect(ds, "fractality"), max_panels, ax)
+
+
 KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
-         "tipping", "fatal_shock", "design")  # the functions above, by analysis kind
+         "tipping", "fatal_shock", "design", "fractality")  # the functions above, by analysis kind
 
 
 def _expect(ds, kind: str):

@@ -213,6 +213,9 @@ def stability_summary(ds) -> list[dict]:
         point["shares"] = {g: {"share": float(share[index][j]),
                                "ci95": [float(lo[index][j]), float(hi[index][j])]}
                            for j, g in enumerate(groups)}
+        h = [float(bs[k].transpose(*dims).values[index])
+             for k in ("entropy", "entropy_ci_low", "entropy_ci_high")]
+        point["entropy"] = {"H": h[0], "ci95": h[1:], "units": "nat"}
         out.append(point)
     return out
 

@@ -19,7 +19,8 @@ NOT_FIXED = {
 }
 SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
                    "combinations", "branches", "d_crit", "orbit", "variables", "target",
-                   "best", "runners_up", "reference", "robustness", "verification", "tipping"}
+                   "best", "runners_up", "reference", "robustness", "verification", "tipping",
+                   "fractality"}
 
 
 def text(value) -> str:
@@ -166,6 +167,10 @@ def _stability_table(points: list[dict], max_points: int) -> list[str]:
         for group, v in point["shares"].items():
             lo, hi = v["ci95"]
             out.append(f"    {group:{width}s} {v['share']:.3f} [{lo:.3f}, {hi:.3f}]")
+        if "entropy" in point:
+            h, (lo, hi) = point["entropy"]["H"], point["entropy"]["ci95"]
+            out.append(f"    {'basin entropy of the shares H':{width}s} {h:.3f} [{lo:.3f}, "
+                       f"{hi:.3f}] nat (95% bootstrap)")
     if len(points) > max_points:
         out.append(f"  ... {len(points) - max_points} more points (--json lists all)")
     return out

@@ -52,7 +52,7 @@ labels = st.lists(st.tuples(st.integers(0, 2), st.integers(0, 2)), min_size=1, m
 
 @given(pairs=labels)
 def test_rows_are_probabilities_and_counts_add_up(pairs):
-    before, after = (np.array(x) for x in zip(*pairs))
+    before, after = (np.array(x) for x in zip(*pairs, strict=True))
     ds = tipping_probabilities(before, after, NAMES)
     p = ds["tip_probability"].values
     np.testing.assert_allclose(p.sum(axis=1), 1.0)
@@ -64,7 +64,7 @@ def test_rows_are_probabilities_and_counts_add_up(pairs):
 
 @given(pairs=labels, perm=st.permutations([0, 1, 2]))
 def test_renaming_the_labels_permutes_the_matrix(pairs, perm):
-    before, after = (np.array(x) for x in zip(*pairs))
+    before, after = (np.array(x) for x in zip(*pairs, strict=True))
     ds = tipping_probabilities(before, after, NAMES)
     renamed = tuple(NAMES[perm.index(k)] for k in range(3))  # code perm[k] is named NAMES[k]
     other = tipping_probabilities(np.array(perm)[before], np.array(perm)[after], renamed)

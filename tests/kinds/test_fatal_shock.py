@@ -36,8 +36,9 @@ def result(tmp_path_factory):
 
 
 def label_direct(state, t0):
+    states = [[float(x) for x in state]]
     text = ('[system]\nmodel = "duffing"\nbodies = 1\n[analysis]\nkind = "basins"\n'
-            f'[initial_conditions]\nkind = "list"\nstates = [{[float(x) for x in state]}]\nt0 = {t0!r}\n')
+            f'[initial_conditions]\nkind = "list"\nstates = {states}\nt0 = {t0!r}\n')
     ds = si.run(parse_scene(text, "<direct>"), workers=1, verify=False)
     names = dict(zip(ds["label_code"].values.tolist(), ds["label_name"].values.tolist(),
                      strict=True))

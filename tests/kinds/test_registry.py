@@ -35,7 +35,8 @@ def test_every_kind_declares_a_figure_and_the_plot_commands_follow_the_registry(
 
 def test_every_kind_has_a_home_and_sweeps_are_those_without_a_run():
     assert set(ANALYSIS_KINDS) == {"trajectory", "catalogue", "basins", "stability", "dcrit",
-                                   "bifurcation", "map", "tipping", "fatal_shock", "design"}
+                                   "bifurcation", "map", "tipping", "fatal_shock", "design",
+                                   "fractality"}
     assert SWEEP_KINDS == ("basins", "stability", "map", "tipping")
     for name, kind in KINDS.items():
         assert kind.name == name and kind.description and callable(kind.read)
@@ -54,7 +55,7 @@ def test_every_kind_reads_its_example_and_plans_it(name):
     assert plan.splitlines()[-1].startswith("output: ")
     # a catalogue section is read exactly by the kinds that need one
     assert (scene.catalogue is not None) == (name in (*SWEEP_KINDS, "dcrit", "bifurcation",
-                                                      "fatal_shock", "design"))
+                                                      "fatal_shock", "design", "fractality"))
 
 
 def test_a_kind_without_a_check_names_those_with_one():
@@ -139,8 +140,9 @@ def test_sweep_kinds_refuse_resume_for_the_others(tmp_path):
 
 # Kind-specific guards of commands that exist for one kind only (`softimpact design`,
 # `design --target`, the design example's header, `info --compare` of a basins result
-# with a stability result); everything else asks the registry.
+# with a stability result, `measure` of a basins result); everything else asks the registry.
 ALLOWED_KIND_TESTS = {
+    "analysis/fractality.py": 1,
     "cli.py": 3,
     "config/design.py": 1,
     "config/examples.py": 1,
