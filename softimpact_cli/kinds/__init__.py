@@ -28,7 +28,7 @@ from ..config.reader import ConfigError, Section
 from ..systems import System
 
 # the modules declaring kinds, in the order `--help` lists them
-MODULES = ("trajectory", "catalogue", "sweeps", "dcrit", "bifurcation", "design")
+MODULES = ("trajectory", "catalogue", "sweeps", "dcrit", "bifurcation", "design", "lyapunov")
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,8 @@ NOT_FIXED = {
 }
 SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
                    "combinations", "branches", "d_crit", "orbit", "variables", "target",
-                   "best", "runners_up", "reference", "robustness", "verification"}
+                   "best", "runners_up", "reference", "robustness", "verification",
+                   "spectra"}
 
 
 def text(value) -> str:
