@@ -7,7 +7,8 @@ grid point) and ``order`` (1 .. dim, largest first), with ``exponent`` and
 ``section_state`` (run, section, variable: the states every forcing period while averaging,
 for a bifurcation-style panel), ``floquet_exponent`` (ln|mu| / (q T) of a catalogue
 solution's multipliers; NaN elsewhere), and per run its ``solution`` name, ``status``,
-``switches`` and wall time. ``attrs["source"]`` is "state", "catalogue" or "grid"; a grid
+``switches`` (the integration's wall time is ``attrs["spectra_wall_s"]``: a variable
+would differ run to run). ``attrs["source"]`` is "state", "catalogue" or "grid"; a grid
 run has the swept axis as a coordinate along ``run``.
 """
 
@@ -125,7 +126,6 @@ def spectra_dataset(problem: Problem, specs: list[Spectrum], names: list[str],
         "status": (("run",), [s.status for s in specs], {"long_name": "kernel status"}),
         "switches": (("run",), [s.switches for s in specs],
                      {"long_name": "switches crossed (saltation applied at each)"}),
-        "wall_time": (("run",), [s.wall for s in specs], {"units": "s"}),
     }
     coords = {"run": np.arange(k), "order": np.arange(1, n + 1),
               "segment": np.arange(avg.segments), "section": np.arange(sections.shape[1]),
@@ -133,6 +133,7 @@ def spectra_dataset(problem: Problem, specs: list[Spectrum], names: list[str],
     attrs = {"analysis": "lyapunov", "source": source, "forcing_period": problem.period,
              "periods": avg.periods, "transient": avg.transient, "segments": avg.segments,
              "per_period": avg.per_period, "saltation": int(avg.saltation),
+             "spectra_wall_s": float(sum(s.wall for s in specs)),
              "method": "Benettin (Gram-Schmidt) on the variational equations, saltation "
                        "matrices at switches" if avg.saltation else
                        "Benettin on the variational equations WITHOUT saltation matrices"}
