@@ -113,7 +113,7 @@ def lyapunov_spectrum(problem: Problem, state, t0: float = 0.0, *, periods: int 
         z0[n:] = np.asarray(tangents, dtype=np.float64).ravel()
     total = (transient + periods) * per_period
     started = time.perf_counter()
-    (status, done, salted, switches), logs, sections, z, istate = kernel.benettin(
+    (status, done, salted, switches), (logs, sections), z, istate = kernel.benettin(
         var.advance, var.system.rhs, var.params, z0, n,
         (float(t0), T / per_period, total, per_period), var.kernel_args(), var.options(),
         bool(saltation))

@@ -91,6 +91,15 @@ def same_method(istate):
     return False
 
 
+@njit(cache=True, inline="always")
+def stopped_at_switch(fstate, t, h_next):
+    """The switch budget is spent: record where (``fstate[T_SWITCH]``, for a caller that
+    continues from the switch, e.g. to apply a saltation matrix) and the step proposed
+    next; the status that says so."""
+    fstate[T_SWITCH], fstate[H] = t, h_next
+    return TOO_MANY_SWITCHES
+
+
 # ---------------------------------------------------------------------------------------
 # pieces of the loops. Bundles are unpacked once per call of a loop: numba counts the
 # references of every array taken out of a tuple, and per step that costs as much as the
@@ -225,8 +234,7 @@ def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, c
                 cross(mask, y, surfaces, istate)
                 need_first, switches = True, switches + 1
                 if switches > opts[MAX_SWITCHES]:
-                    fstate[T_SWITCH], fstate[H] = t, h_next  # where it stopped (saltation)
-                    return TOO_MANY_SWITCHES
+                    return stopped_at_switch(fstate, t, h_next)
             h = h_next
             if steps > opts[MAX_STEPS]:
                 fstate[H] = h
@@ -289,8 +297,7 @@ def fixed_loop(name, begin, step, dense, accept):
                 cross(mask, y, surfaces, istate)
                 need_first, switches = True, switches + 1
                 if switches > opts[MAX_SWITCHES]:
-                    fstate[T_SWITCH] = t  # where it stopped (saltation)
-                    return TOO_MANY_SWITCHES
+                    return stopped_at_switch(fstate, t, fstate[H])
                 continue
             t, k = target, k + 1
             if not locate and A_s.shape[0] > 0:  # plain scheme: the mode is the state's

@@ -77,8 +77,8 @@ def benettin(advance, rhs, p, z0, n, start, surfaces, opts, use_saltation):
     surfaces : the variational system's (A, b, relevance, contact); opts : its options
     (``opts[MAX_SWITCHES]``: the switch budget per interval).
 
-    Returns ``(status, intervals done, salted, switches), logs (n_intervals, n), sections
-    (n_intervals // per_section, n), z, istate``: ``logs[k, j] = ln R_jj`` of interval
+    Returns ``(status, intervals done, salted, switches), (logs (n_intervals, n),
+    sections (n_intervals // per_section, n)), z, istate``: ``logs[k, j] = ln R_jj`` of interval
     k; ``sections`` the state every ``per_section`` intervals; ``salted`` the switches at
     which a saltation matrix was applied (it differed from I or not), ``switches`` all.
     Rows after a failure are NaN.
@@ -105,7 +105,7 @@ def benettin(advance, rhs, p, z0, n, start, surfaces, opts, use_saltation):
             if status == OK:
                 break
             if status != TOO_MANY_SWITCHES:
-                return (status, k, salted, switches), logs, sections, z, istate
+                return (status, k, salted, switches), (logs, sections), z, istate
             t = fstate[T_SWITCH]
             crossed = (before ^ istate[MODE]) & relevance[before]
             switches += 1
@@ -115,9 +115,9 @@ def benettin(advance, rhs, p, z0, n, start, surfaces, opts, use_saltation):
                 apply_to_tangents(S, z, n)
                 salted += 1
             if in_interval > budget:
-                return (TOO_MANY_SWITCHES, k, salted, switches), logs, sections, z, istate
+                return (TOO_MANY_SWITCHES, k, salted, switches), (logs, sections), z, istate
         t = t_end
         orthonormalise(z, n, logs[k])
         if (k + 1) % per_section == 0:
             sections[(k + 1) // per_section - 1] = z[:n]
-    return (OK, n_intervals, salted, switches), logs, sections, z, istate
+    return (OK, n_intervals, salted, switches), (logs, sections), z, istate

@@ -339,7 +339,7 @@ def design(ds, ax=None) -> Figure:
 
 
 KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
-         "design")  # the functions above, by analysis kind
+         "design", "lyapunov")  # the functions above, by analysis kind
 
 
 def _expect(ds, kind: str):
