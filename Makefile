@@ -163,6 +163,19 @@ $(FRACTALITY): $(STAMP)
 		-o results/fractality/$(@:fractality-%=%)_measures.png
 .PHONY: fractality $(FRACTALITY)
 
+# Lyapunov exponents (README: "Lyapunov exponents"): Ueda's chaotic oscillator (the smooth
+# reference), the catalogue of figure 14(c) beside its Floquet exponents, and the spectrum
+# along c_c from figure 14(c)'s impacting orbit. About a minute in all.
+LYAPUNOV := lyapunov-ueda lyapunov-fig14c-catalogue lyapunov-fig14c-c-c
+lyapunov: $(LYAPUNOV)
+lyapunov-ueda: configs/lyapunov_ueda.toml
+lyapunov-fig14c-catalogue: configs/lyapunov_fig14c_catalogue.toml
+lyapunov-fig14c-c-c: configs/figures/lyapunov_fig14c_c_c.toml
+$(LYAPUNOV): $(STAMP)
+	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
+	$(SI) plot lyapunov results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
+.PHONY: lyapunov $(LYAPUNOV)
+
 # Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.
 DESIGNS := design-duffing design-bilinear
@@ -256,6 +269,7 @@ help:
 	@echo "  fig13-catalogue fig14 fig14ab fig14cd fig14c-t0 fig14c-random-t0 fig15 fig15a"
 	@echo "  fig15b map-d-phi  one figure each (results/<target>.{h5,png}; QUICK=1 works too)"
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
+	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
 	@echo "  reproduce         the study's 89 statements checked -> results/reproduce.md (QUICK=1)"
 	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"
 	@echo "  clean             remove .venv and caches"

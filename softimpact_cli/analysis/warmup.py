@@ -138,6 +138,14 @@ def _steps(model: str | None = None) -> list:
         orbit_points(problem, x0, 2)
         amplitude(problem, x0, 1, samples=8)
 
+    def run_lyapunov(system):  # Benettin on the variational equations (kind lyapunov)
+        from .lyapunov import lyapunov_spectrum
+
+        state = np.zeros(system.dim)
+        state[0] = 0.5
+        lyapunov_spectrum(Problem(system, system.defaults(), SHOOTING), state, periods=2,
+                          transient=0, segments=2, per_period=2)
+
     steps = []
     for (name, bodies), system in sorted(REGISTRY.items()):
         if model is not None and name != model:
@@ -150,6 +158,8 @@ def _steps(model: str | None = None) -> list:
         if bodies == 1:
             steps.append((f"{name} catalogue (Newton, variational equations)",
                           lambda s=system: run_catalogue(s)))
+        steps.append((f"{name} {kind}: Lyapunov exponents (Benettin, saltation)",
+                      lambda s=system: run_lyapunov(s)))
     return steps
 
 

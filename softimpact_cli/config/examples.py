@@ -246,7 +246,30 @@ box = { x = [-3.0, 3.0], v = [-3.0, 3.0] }
 [output]
 path = "results/example_fractality.h5"
 """,
+    "lyapunov": _PAIR + """
+[integrator]
+method = "dopri5"          # the variational equations run with an explicit method
+
+[analysis]
+kind = "lyapunov"          # Lyapunov exponents, saltation matrices at switches (seconds)
+start = "state"            # "state": from `state`; "catalogue": every catalogue solution
+state = [8.0, 0.0, -4.0, 0.0]   # x1, v1, x2, v2 at t0
+t0 = 0.0
+transient = 50             # forcing periods discarded first
+periods = 200              # periods averaged, in `segments` equal segments (their spread
+segments = 10              #   gives the standard error); periods a multiple of segments
+per_period = 8             # Gram-Schmidt re-orthonormalisations per period
+saltation = true           # false: tangents not corrected at switches (wrong; to compare)
+follow = true              # with [grid]: each value starts from the last one's end state
+
+# [grid]                   # optional: the exponents along ONE parameter (d, phi, k_c, c_c)
+# c_c = { start = 10.0, stop = 2.0, num = 17 }
+
+[output]
+path = "results/example_lyapunov.h5"
+""",
 }
+
 
 def example(kind: str) -> str:
     """The commented example scene of analysis ``kind`` (KeyError if there is none)."""

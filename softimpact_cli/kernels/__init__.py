@@ -23,7 +23,7 @@ METHOD_MODULES = {"auto": "auto", "rk4": "rk4", "dopri5": "dopri5", "rodas4": "r
 ALIASES = {"stiff": "rodas4"}  # other names a scene may use
 
 _SHARED = ("cells", "codes", "common", "control", "dense", "driver", "layout", "linalg",
-           "orbit", "switching")
+           "orbit", "switching", "saltation", "lyapunov")
 with source_keyed_cache():  # every jitted module of the package, imported here
     _modules = {name: import_module(f".{name}", __name__)
                 for name in (*_SHARED, *METHOD_MODULES.values())}

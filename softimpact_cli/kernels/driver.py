@@ -38,6 +38,11 @@ now (``auto``: 0 explicit, 1 stiff; a single method: always 0):
   (``change_method`` returns True: begin again; ``enter_mode`` True when the new mode
   changes the method); ``no_change`` and ``same_method`` for a single method.
 
+A switch budget ``opts[MAX_SWITCHES]`` exceeded ends the call with ``TOO_MANY_SWITCHES``
+right after the crossing, ``y`` on the surface in the new mode and the switch time in
+``fstate[T_SWITCH]``: with a budget of 0 a caller stops at every switch (Benettin's method
+applies the saltation matrix there, ``kernels/lyapunov.py``).
+
 ``name`` (the method's, a Python identifier) names the loops in numba's disk cache.
 """
 
@@ -61,6 +66,7 @@ from .layout import (
     N_REJECTED,
     N_RHS,
     N_STEPS,
+    T_SWITCH,
     VARIANT,
     H,
 )
@@ -83,6 +89,15 @@ def no_change(istate, mode):
 @njit(cache=True, inline="always")
 def same_method(istate):
     return False
+
+
+@njit(cache=True, inline="always")
+def stopped_at_switch(fstate, t, h_next):
+    """The switch budget is spent: record where (``fstate[T_SWITCH]``, for a caller that
+    continues from the switch, e.g. to apply a saltation matrix) and the step proposed
+    next; the status that says so."""
+    fstate[T_SWITCH], fstate[H] = t, h_next
+    return TOO_MANY_SWITCHES
 
 
 # ---------------------------------------------------------------------------------------
@@ -219,7 +234,7 @@ def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, c
                 cross(mask, y, surfaces, istate)
                 need_first, switches = True, switches + 1
                 if switches > opts[MAX_SWITCHES]:
-                    return TOO_MANY_SWITCHES
+                    return stopped_at_switch(fstate, t, h_next)
             h = h_next
             if steps > opts[MAX_STEPS]:
                 fstate[H] = h
@@ -282,7 +297,7 @@ def fixed_loop(name, begin, step, dense, accept):
                 cross(mask, y, surfaces, istate)
                 need_first, switches = True, switches + 1
                 if switches > opts[MAX_SWITCHES]:
-                    return TOO_MANY_SWITCHES
+                    return stopped_at_switch(fstate, t, fstate[H])
                 continue
             t, k = target, k + 1
             if not locate and A_s.shape[0] > 0:  # plain scheme: the mode is the state's

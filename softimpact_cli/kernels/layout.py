@@ -41,7 +41,9 @@ N_ISTATE = 14
 # fstate
 H = 0  # the step the adaptive controller proposes next
 MAX_G = 1  # running max of the contact function x1 - x2 - d (reset per period by callers)
-N_FSTATE = 2
+T_SWITCH = 2  # the time of the switch after which an advance call stopped on its switch
+#               budget (TOO_MANY_SWITCHES); ``opts[MAX_SWITCHES] = 0`` stops at every switch
+N_FSTATE = 3
 
 # rows of the work array (shape (work_rows(dim), dim)); one array holds every method's
 # scratch, so the driver passes it alone

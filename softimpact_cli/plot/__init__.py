@@ -252,6 +252,14 @@ def catalogue(ds, ax=None) -> Figure:
     return draw_catalogue(_expect(ds, "catalogue"), ax)
 
 
+def lyapunov(ds, ax=None) -> Figure:
+    """Lyapunov exponents with standard errors: against the parameter above the section
+    states for a grid run (2 panels), else per run with Floquet exponents beside (1)."""
+    from .lyapunov_figure import draw_lyapunov
+
+    return draw_lyapunov(_expect(ds, "lyapunov"), ax)
+
+
 def error_note(fig, ds) -> Figure:
     """Print the result's verification line (its measured label error, see
     ``report.verification``) at the foot of ``fig``; returns ``fig``."""
@@ -357,7 +365,8 @@ def fractality(ds, ax=None, *, max_panels: int = 8) -> Figure:
 
 
 KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
-         "tipping", "fatal_shock", "design", "fractality")  # the functions above, by analysis kind
+         "tipping", "fatal_shock", "design", "fractality",
+         "lyapunov")  # the functions above, by analysis kind
 
 
 def _expect(ds, kind: str):

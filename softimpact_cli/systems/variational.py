@@ -5,7 +5,9 @@ state is ``(y, vec(Phi))`` with ``Phi' = J(t, y, mode) Phi`` (row-major ``Phi``)
 switching surfaces are the base system's (they ignore ``Phi``), so every kernel runs it
 unchanged. No saltation matrix is applied at a switch: exact where the vector field is
 continuous across the surface (the bilinear springs, the no-tension stop, every orbit
-without contact), not across the paper-law stop's onset, where callers must not use it.
+without contact), not across the paper-law stop's onset, where callers must not use it
+as it is: ``kernels/lyapunov.py`` stops at every switch and applies the saltation matrix
+(``kernels/saltation.py``), which makes it right there too.
 
 Each registered system has a module-level, disk-cached right-hand side here (a thin
 wrapper binding its ``rhs`` and ``jacobian`` to :func:`extend`), so that the kernels it is

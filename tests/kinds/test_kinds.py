@@ -113,8 +113,18 @@ seed = 15
 grid = 6
 random = 20
 """,
+    "lyapunov": PAIR + """
+[analysis]
+kind = "lyapunov"
+state = [-9.7384, 0.5832, 1.3324, -1.7490]
+transient = 2
+periods = 8
+segments = 4
+[grid]
+c_c = [10.0, 9.0]
+""",
 }
-FAST = ("trajectory", "catalogue", "basins")
+FAST = ("trajectory", "catalogue", "basins", "lyapunov")
 COMPARABLE = ("basins", "stability", "map", "dcrit", "bifurcation")
 
 

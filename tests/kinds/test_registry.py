@@ -36,7 +36,7 @@ def test_every_kind_declares_a_figure_and_the_plot_commands_follow_the_registry(
 def test_every_kind_has_a_home_and_sweeps_are_those_without_a_run():
     assert set(ANALYSIS_KINDS) == {"trajectory", "catalogue", "basins", "stability", "dcrit",
                                    "bifurcation", "map", "tipping", "fatal_shock", "design",
-                                   "fractality"}
+                                   "fractality", "lyapunov"}
     assert SWEEP_KINDS == ("basins", "stability", "map", "tipping")
     for name, kind in KINDS.items():
         assert kind.name == name and kind.description and callable(kind.read)

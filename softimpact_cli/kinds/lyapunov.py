@@ -1,0 +1,165 @@
+"""[analysis] kind = "lyapunov": Lyapunov exponents of a trajectory, of every catalogue
+solution, or along a parameter ([grid]); see ``analysis/lyapunov.py`` for the method."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..config.reader import ConfigError
+from ..config.sweep import read_catalogue, read_grid
+from . import AnalysisKind, PlotSpec, Sections, read_state, read_t0
+
+STARTS = ("state", "catalogue")
+QUICK_PERIODS = 100  # --quick: at most this many averaged periods (and 20 transient)
+MAX_PERIODS = 10_000_000
+
+
+@dataclass(frozen=True)
+class LyapunovAnalysis:
+    """[analysis] kind = "lyapunov".
+
+    start : "state" (the trajectory from ``state`` at ``t0``; with [grid], one spectrum
+        per value of its one swept axis) or "catalogue" (every solution of the [catalogue]
+        search: one body's attractors or a pair's combinations, with their Floquet
+        exponents beside)
+    periods, transient, segments : forcing periods averaged, discarded before, and the
+        segments whose spread gives the standard error (periods a multiple of segments)
+    per_period : Gram-Schmidt re-orthonormalisations per period
+    saltation : apply the saltation matrix at switches (false: for comparison only)
+    follow : along a grid, start each value from the previous value's end state
+    """
+
+    kind: str
+    start: str = "state"
+    state: tuple[float, ...] | None = None
+    t0: float = 0.0
+    periods: int = 500
+    transient: int = 50
+    segments: int = 10
+    per_period: int = 8
+    saltation: bool = True
+    follow: bool = True
+    axis: str | None = None
+    values: tuple[float, ...] = ()
+
+
+def read(sec, ctx) -> LyapunovAnalysis:
+    start = sec.choice("start", "state", STARTS)
+    state = None
+    if start == "state":
+        if not sec.has("state"):
+            raise sec.fail("state", f"is required with start = 'state': the initial "
+                                    f"{', '.join(ctx.system.state_names)}")
+        state = read_state(sec, "state", ctx.system)
+    elif sec.has("state"):
+        raise sec.fail("state", "not used with start = 'catalogue' (the solutions' own "
+                                "section points are the starts)")
+    analysis = LyapunovAnalysis(
+        kind="lyapunov", start=start, state=state, t0=read_t0(sec, ctx.period),
+        periods=sec.integer("periods", 500, 2, MAX_PERIODS),
+        transient=sec.integer("transient", 50, 0, MAX_PERIODS),
+        segments=sec.integer("segments", 10, 2, 10_000),
+        per_period=sec.integer("per_period", 8, 1, 10_000),
+        saltation=sec.boolean("saltation", True),
+        follow=sec.boolean("follow", True),
+    )
+    if analysis.periods % analysis.segments:
+        raise sec.fail("segments", f"must divide periods ({analysis.periods}) into equal "
+                                   f"segments, got {analysis.segments}")
+    return analysis
+
+
+def sections(analysis, ctx) -> Sections:
+    if analysis.start == "catalogue":
+        ctx.refuse("grid", "initial_conditions")
+        return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
+                                                           ctx.system.extra["catalogue_box"]))
+    ctx.refuse("initial_conditions", "catalogue")
+    if "grid" not in ctx.doc:
+        return Sections(analysis)
+    grid = read_grid(ctx.source, ctx.doc, ctx.values, ctx.system.bodies, ctx.period,
+                     ctx.check_axis)
+    if len(grid.swept) != 1 or grid.panels:
+        raise ConfigError(f"{ctx.source}: [grid]: lyapunov follows one parameter; give one "
+                          f"axis (one of d, phi, k_c, c_c, t0), got "
+                          f"{', '.join(grid.swept) or 'panels'}")
+    axis = grid.swept[0]
+    return Sections(replace(analysis, axis=axis, values=tuple(grid.axes[axis])), grid)
+
+
+def shrink(analysis, grid, axis: int):
+    from ..config.scene import thin
+
+    seg = min(analysis.segments, 10)
+    periods = max(seg, min(analysis.periods, QUICK_PERIODS) // seg * seg)
+    out = replace(analysis, periods=periods, segments=seg,
+                  transient=min(analysis.transient, 20))
+    if grid is not None and analysis.axis is not None:
+        values = thin(grid.axes[analysis.axis], axis)
+        grid = replace(grid, axes={**grid.axes, analysis.axis: values})
+        out = replace(out, values=values)
+    return out, grid, f", at most {QUICK_PERIODS} averaged periods"
+
+
+def _averaging(a):
+    from ..analysis.lyapunov_scans import Averaging
+
+    return Averaging(a.periods, a.transient, a.segments, a.per_period, a.saltation)
+
+
+def run(scene, progress=None, **_):
+    from ..analysis.engine import Problem
+    from ..analysis.lyapunov_scans import (
+        catalogue_spectra,
+        parameter_spectra,
+        trajectory_spectrum,
+    )
+
+    a = scene.analysis
+    problem = Problem(scene.system, scene.values, scene.integrator)
+    avg = _averaging(a)
+    if a.start == "catalogue":
+        from ..analysis.catalogue import scene_catalogue
+
+        cat = scene_catalogue(scene)
+        tick = progress(len(cat.names)) if progress else None
+        return catalogue_spectra(problem, cat, avg, tick)
+    if a.axis is not None:
+        tick = progress(len(a.values)) if progress else None
+        return parameter_spectra(problem, a.state, a.t0, a.axis, a.values, avg, a.follow,
+                                 tick)
+    return trajectory_spectrum(problem, a.state, a.t0, avg)
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    a = scene.analysis
+    what = "every catalogue solution" if a.start == "catalogue" else \
+        f"the trajectory from ({', '.join(f'{x:g}' for x in a.state)}) at t0 = {a.t0:g}"
+    if a.axis is not None:
+        what += f", at {len(a.values)} values of {a.axis}" + \
+            (" (each from the last end state)" if a.follow else "")
+    salt = "" if a.saltation else " WITHOUT saltation matrices"
+    return (f"lyapunov: {what}; {a.transient} + {a.periods} periods in {a.segments} "
+            f"segments, {a.per_period} re-orthonormalisations per period{salt}")
+
+
+def summary(ds) -> dict:
+    from ..report.lyapunov import lyapunov_summary
+
+    return lyapunov_summary(ds)
+
+
+def report(ds) -> str:
+    from ..report.lyapunov import format_lyapunov
+
+    return format_lyapunov(ds)
+
+
+KINDS = (AnalysisKind("lyapunov", "Lyapunov exponents (Benettin, saltation at switches) of "
+                      "a trajectory, of catalogue solutions or along a parameter", read, plan,
+                      sections=sections, shrink=shrink, run=run, summary=summary,
+                      report=report, info_after=lambda ds: report(ds).splitlines(),
+                      progress_unit="spectra",
+                      plot=PlotSpec("Lyapunov exponents with their standard errors (against "
+                                    "the parameter, beside the section states, for a grid "
+                                    "run).")),)
