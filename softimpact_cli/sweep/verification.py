@@ -16,7 +16,8 @@ share that disagrees gets a 95% Wilson interval ``[low, high]``; with ``threshol
   comes first, the sample says: it is also rerun alone at the sweep's own settings without
   capture and cells; when those labels already disagree with the tight ones beyond the
   threshold, the tolerance is to blame (rtol and atol / 100 and 4x RK4 steps first, capture
-  and cells kept), else capture and cells are (off first, then the tolerance). The final result is
+  and cells kept), else capture and cells are (off first, then the tolerance). A redo that
+  does not halve the disagreements ends the ladder (:func:`stalled`). The final result is
   kept, every attempt recorded (``verify_history``); status "tightened" when the final
   attempt is not over the threshold, else "over threshold" (as without ``tighten``).
 
@@ -189,7 +190,7 @@ def verify_sweep(scene: Scene, ds: xr.Dataset, redo: Callable[[Scene, int], xr.D
     blame = attempts[0].blame(settings.threshold)
     for rung, (description, tighter) in enumerate(
             ladder(scene.integrator, blame) if settings.tighten else (), start=1):
-        if attempts[-1].outcome(settings.threshold) != OVER:
+        if attempts[-1].outcome(settings.threshold) != OVER or stalled(attempts):
             break
         echo(f"verification: {_numbers(attempts[-1])} > {_percent(settings.threshold)}; "
              f"redoing the whole sweep with {description}")
@@ -199,6 +200,15 @@ def verify_sweep(scene: Scene, ds: xr.Dataset, redo: Callable[[Scene, int], xr.D
     ds.attrs.update(attributes(attempts, settings.threshold, settings.tighten,
                                time.perf_counter() - started, settings.seed))
     return ds
+
+
+def stalled(attempts: list[Attempt]) -> bool:
+    """Whether the last redo failed to halve the disagreements of the attempt before it:
+    tightening is then not what the labels need (near a fractal boundary a start's label
+    depends on every digit of its integration, at any tolerance), and a further rung
+    would redo the whole sweep for nothing."""
+    return (len(attempts) > 1
+            and 2 * attempts[-1].disagreements > attempts[-2].disagreements)
 
 
 def _reference(scene: Scene) -> IntegratorSettings:
@@ -238,6 +248,10 @@ def status_message(attempts: list[Attempt], threshold: float, tighten: bool) -> 
         return (f"the first run was over {limit}; redone {len(attempts) - 1} time(s) at "
                 f"tighter settings, now {last.outcome(threshold)}")
     why = ("[verification] tighten = false" if not tighten else
+           f"a redo at tighter settings did not halve the disagreements "
+           f"({attempts[-2].disagreements} -> {last.disagreements} of {last.sample}): "
+           "labels this sensitive (a fractal boundary) change with any tolerance, so no "
+           "further rung was run" if stalled(attempts) else
            f"still over after {len(attempts) - 1} redo(s), the last rung of the ladder"
            if len(attempts) > 1 else "no tighter rung")
     return (f"the label error may exceed {limit} ({why}); the result is kept as run: "

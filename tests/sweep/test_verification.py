@@ -230,3 +230,32 @@ def test_verifying_never_imports_matplotlib(tmp_path):
             "assert 'matplotlib' not in sys.modules\n")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr
+
+
+def test_a_redo_that_does_not_halve_the_disagreements_ends_the_ladder():
+    """Near a fractal boundary tightening does not help: stop after one redo, say why."""
+    from types import SimpleNamespace
+
+    scene = si.load_scene(PLANE + "[integrator]\ncell_size = 0.5\ncell_hits = 2\n")
+    calls, outcomes = [], iter([(12, 400), (9, 400), (1, 400)])
+
+    def fake_check(sc, ds, n, seed, executor):
+        k, sample = next(outcomes)
+        a = attempt(k, sample)
+        return dataclasses.replace(a, alone_disagreements=0)
+
+    def redo(sc, rung):
+        calls.append(rung)
+        return SimpleNamespace(attrs={"n": 1000})
+
+    original = v.check_result
+    v.check_result = fake_check
+    try:
+        ds = v.verify_sweep(scene, SimpleNamespace(attrs={"n": 1000}), redo, sample=400)
+    finally:
+        v.check_result = original
+    assert calls == [1]  # 12 -> 9 did not halve: no second rung
+    assert ds.attrs["verify_status"] == v.OVER and ds.attrs["verify_rungs"] == 1
+    assert "did not halve the disagreements (12 -> 9 of 400)" in ds.attrs["verify_message"]
+    assert v.stalled([attempt(12, 400), attempt(6, 400)]) is False  # halved: go on
+    assert v.stalled([attempt(12, 400)]) is False
