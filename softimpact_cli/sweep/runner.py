@@ -229,6 +229,13 @@ def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: st
                           chunk_size, echo, progress, attrs or {})
 
 
+def refuse_existing(out: Path, overwrite: bool) -> None:
+    """ConfigError when a new run would replace the result ``out`` without --overwrite."""
+    if not overwrite and SweepStore(out).exists():
+        raise ConfigError(f"{out}: result exists; pass --overwrite to replace it, or "
+                          "--resume to finish an interrupted run")
+
+
 def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, echo, progress,
                attrs):
     session = time.time()
@@ -268,9 +275,8 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
             echo(f"resume: the result header {out} is unreadable ({damaged}); starting a new "
                  "run" if damaged else f"nothing to resume at {out}; starting a new run")
             resume = False
-    elif store.exists() and not overwrite:
-        raise ConfigError(f"{out}: result exists; pass --overwrite to replace it, or "
-                          "--resume to finish an interrupted run")
+    else:
+        refuse_existing(out, overwrite)
     plan = Plan(scene, size)
     plan.check_resources(out, str(scene.source))
     echo(plan.describe())

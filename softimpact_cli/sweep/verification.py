@@ -195,7 +195,9 @@ def verify_sweep(scene: Scene, ds: xr.Dataset, redo: Callable[[Scene, int], xr.D
         echo(f"verification: {_numbers(attempts[-1])} > {_percent(settings.threshold)}; "
              f"redoing the whole sweep with {description}")
         scene = rung_scene(scene, description, tighter)
+        kept = {k: v for k, v in ds.attrs.items() if k.startswith("pilot_")}
         ds = redo(scene, rung)
+        ds.attrs.update(kept)  # how the first run's tolerance was chosen stays on record
         attempts.append(check_result(scene, ds, n, settings.seed, executor))
     ds.attrs.update(attributes(attempts, settings.threshold, settings.tighten,
                                time.perf_counter() - started, settings.seed))
@@ -320,7 +322,7 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
     from ..store.provenance import command_line
     from .executors import make_executor
     from .pilot import choose_tolerance, scene_as_run
-    from .runner import run_sweep
+    from .runner import refuse_existing, run_sweep
 
     with output_lock(out, command_line()):
         enabled = verify and (scene.verification is None or scene.verification.enabled)
@@ -333,6 +335,8 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
             scene = scene_as_run(scene, ds.attrs)
         else:
             if enabled:
+                if not resume:  # refused before the pilot spends anything
+                    refuse_existing(out, bool(run_options.get("overwrite")))
                 scene, extra = choose_tolerance(scene, sample, executor, echo)
                 extra["verify_status"] = PENDING  # until the verification below ends
             else:

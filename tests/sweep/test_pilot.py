@@ -162,3 +162,16 @@ def test_scene_as_run_rebuilds_the_choice_from_the_attributes():
     ran = pilot.scene_as_run(sc, {"pilot_rtol": 1e-6, "pilot_atol": 1e-8})
     assert (ran.integrator.rtol, ran.integrator.atol) == (1e-6, 1e-8)
     assert ran.text.endswith("# tolerance pilot: rtol 1e-06, atol 1e-08\n")
+
+
+def test_an_existing_result_is_refused_before_the_pilot_spends_anything(tmp_path,
+                                                                         monkeypatch):
+    out = tmp_path / "p.h5"
+    si.sweep(SMOOTH.replace("resolution = [32, 32]", "resolution = [4, 4]"), out, workers=1)
+
+    def no_pilot(*args, **kwargs):
+        raise AssertionError("the pilot ran before the refusal")
+
+    monkeypatch.setattr(pilot, "choose_tolerance", no_pilot)
+    with pytest.raises(si.ConfigError, match="result exists; pass --overwrite"):
+        si.sweep(SMOOTH, out, workers=1)

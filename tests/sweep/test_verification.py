@@ -251,10 +251,12 @@ def test_a_redo_that_does_not_halve_the_disagreements_ends_the_ladder():
     original = v.check_result
     v.check_result = fake_check
     try:
-        ds = v.verify_sweep(scene, SimpleNamespace(attrs={"n": 1000}), redo, sample=400)
+        ds = v.verify_sweep(scene, SimpleNamespace(attrs={"n": 1000, "pilot_status": "x"}),
+                            redo, sample=400)
     finally:
         v.check_result = original
     assert calls == [1]  # 12 -> 9 did not halve: no second rung
+    assert ds.attrs["pilot_status"] == "x"  # the redone result keeps the pilot's record
     assert ds.attrs["verify_status"] == v.OVER and ds.attrs["verify_rungs"] == 1
     assert "did not halve the disagreements (12 -> 9 of 400)" in ds.attrs["verify_message"]
     assert v.stalled([attempt(12, 400), attempt(6, 400)]) is False  # halved: go on
