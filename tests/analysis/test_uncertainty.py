@@ -103,3 +103,22 @@ def test_the_t_quantile_matches_scipy():
     for df in range(1, 60):
         tol = 1e-12 if df <= 5 else 1.1e-4
         assert t975(df) == pytest.approx(t.ppf(0.975, df), abs=tol)
+
+
+def test_the_published_grebogi_map_boundary_has_alpha_near_0_2():
+    """McDonald, Grebogi, Ott and Yorke's map (Physica D 17, 125 (1985); a = 1.32,
+    b = 0.9, J0 = 0.3), basins of its fixed points (0, -J0) and (pi, J0) on a 251 x 251
+    grid of theta in [0, 2 pi], x in [-0.5, 0.5]: the paper gives alpha roughly 0.2
+    (D ~ 1.8); Attractors.jl's test of the same grid accepts 0.2 <= alpha <= 0.3."""
+    a, b, j0 = 1.32, 0.9, 0.3
+    th, x = np.meshgrid(np.linspace(0, 2 * np.pi, 251), np.linspace(-0.5, 0.5, 251),
+                        indexing="ij")
+    for _ in range(300):
+        th, x = (np.mod(th + a * np.sin(2 * th) - b * np.sin(4 * th) - x * np.sin(th),
+                        2 * np.pi), -j0 * np.cos(th))
+    labels = np.where(np.cos(th) > 0, 0, 1)
+    assert np.all(np.abs(np.abs(np.cos(th)) - 1) < 1e-3)  # every start reached a fixed point
+    ds = uncertainty_exponent(labels)
+    assert 0.15 <= float(ds["alpha"]) <= 0.3
+    assert float(ds["alpha_ci_low"]) <= 0.2 <= float(ds["alpha_ci_high"])
+    assert float(ds["dimension"]) == pytest.approx(2 - float(ds["alpha"]))
