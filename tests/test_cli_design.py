@@ -9,6 +9,7 @@ import sys
 import pytest
 from click.testing import CliRunner
 
+import softimpact_cli as si
 from softimpact_cli.cli import main
 from softimpact_cli.config import ConfigError, parse_scene
 
@@ -170,3 +171,19 @@ def test_bad_design_keys(change, key):
     with pytest.raises(ConfigError) as err:
         parse_scene(text, "s.toml")
     assert key in str(err.value) and "\n" not in str(err.value)
+
+
+def test_design_reports_the_targets_minimal_fatal_shock(design_result):
+    """At the pick only the target survives, so no shock up to half the sampled box's
+    diagonal reaches another attractor; the reference is measured the same way."""
+    _, out, printed = design_result
+    ds = si.open_result(out)
+    assert ds.attrs["fatal_shock_settings"] == ("4 phases x 16 directions, 16 magnitudes up "
+                                                "to 24, bisection to 0.01")
+    assert ds.attrs["fatal_shock_best"] == float("inf")
+    assert "fatal_shock_reference" in ds.attrs
+    info = run("info", out, "--json")
+    shocks = json.loads(info.output)["fatal_shock"]
+    assert set(shocks) == {"best", "reference"}
+    assert "minimal fatal shock of the target (an upper bound; 4 phases x 16" in printed
+    assert "  pick: none up to the largest shock scanned" in printed

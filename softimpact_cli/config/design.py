@@ -32,6 +32,8 @@ class DesignAnalysis:
     phi_points : phases of the critical-distance grid over [0, 2 pi)
     reference : a point to verify beside the pick with the same samples (or None)
     seed : rotation of the candidate set (the samples' seed is in [initial_conditions])
+    shock_directions : directions of the minimal fatal shock of the target at the pick and
+        the reference (``kinds.fatal_shock``; 4 phases, bisection to 1e-2; 0: not computed)
     """
 
     kind: str
@@ -48,6 +50,7 @@ class DesignAnalysis:
     reference: Mapping[str, float] | None = None
     seed: int = 0
     label_tol: float = 1e-3
+    shock_directions: int = 16
 
 
 def check_target(name: object, where: str) -> str:
@@ -149,6 +152,7 @@ def read_design(sec: Section, values: Mapping, check_axis) -> DesignAnalysis:
         reference=reference,
         seed=sec.integer("seed", 0, 0, MAX_SEED),
         label_tol=sec.number("label_tol", 1e-3, lambda v: None if v > 0 else "must be > 0"),
+        shock_directions=sec.integer("shock_directions", 16, 0, 100_000),
     )
     return design
 

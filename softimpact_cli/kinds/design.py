@@ -50,8 +50,50 @@ def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
     from ..sweep.design import run_design
 
     options = {} if echo is None else {"echo": echo}
-    return run_design(scene, workers=workers, scheduler=scheduler, progress=progress,
-                      **options)
+    ds = run_design(scene, workers=workers, scheduler=scheduler, progress=progress,
+                    **options)
+    if scene.analysis.shock_directions > 0:
+        ds.attrs.update(fatal_shocks(scene, ds, workers))
+    return ds
+
+
+SHOCK_PHASES, SHOCK_SCAN, SHOCK_TOL = 4, 16, 1e-2  # a second robustness measure, kept cheap
+
+
+def fatal_shocks(scene, ds, workers=None) -> dict:
+    """The minimal fatal shock of the target at the pick and at the reference point
+    (``fatal_shock_<role>*`` attributes; an upper bound, see ``analysis.fatal_shock``),
+    over the design's sampled box: shocks up to half its diagonal."""
+    import math
+    from dataclasses import replace
+
+    from ..report.info import design_summary
+    from .fatal_shock import FatalShockAnalysis
+    from .fatal_shock import run as fatal_shock_run
+
+    a, box = scene.analysis, scene.initial_conditions.box
+    max_shock = 0.5 * math.sqrt(sum((hi - lo) ** 2 for lo, hi in box.values()))
+    settings = FatalShockAnalysis("fatal_shock", a.target, SHOCK_PHASES, a.shock_directions,
+                                  max_shock, SHOCK_SCAN, SHOCK_TOL, a.seed)
+    summary = design_summary(ds)
+    out = {"fatal_shock_settings": f"{SHOCK_PHASES} phases x {a.shock_directions} "
+                                   f"directions, {SHOCK_SCAN} magnitudes up to "
+                                   f"{max_shock:g}, bisection to {SHOCK_TOL:g}"}
+    for role in ("best", "reference"):
+        point = summary[role]
+        if point is None:
+            continue
+        if not point["target_exists"]:
+            out[f"fatal_shock_{role}"] = float("nan")
+            continue
+        values = {**scene.values, **{k: point[k] for k in ("d", "phi", "k_c", "c_c")}}
+        shock = fatal_shock_run(replace(scene, values=values, analysis=settings),
+                                workers=workers)
+        out[f"fatal_shock_{role}"] = float(shock.attrs["mfs"])
+        if math.isfinite(shock.attrs["mfs"]):
+            out[f"fatal_shock_{role}_time"] = float(shock.attrs["mfs_time"])
+            out[f"fatal_shock_{role}_destination"] = str(shock.attrs["mfs_destination"])
+    return out
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:

@@ -297,6 +297,11 @@ def design_summary(ds) -> dict:
                        for i, r in enumerate(role) if r == "perturbed"],
         "screened": sum(r in ("best", "runner-up", "screened") for r in role),
         "screen_n": int(ds.attrs["screen_n"]), "robust_n": int(ds.attrs["robust_n"]),
+        "fatal_shock": {role: {"magnitude": float(ds.attrs[f"fatal_shock_{role}"]),
+                               "time": ds.attrs.get(f"fatal_shock_{role}_time"),
+                               "destination": ds.attrs.get(f"fatal_shock_{role}_destination")}
+                        for role in ("best", "reference")
+                        if f"fatal_shock_{role}" in ds.attrs},
     }
 
 
@@ -333,4 +338,15 @@ def format_design(ds) -> str:
                      f"[{p['ci95'][0]:.3f}, {p['ci95'][1]:.3f}], impacting "
                      f"{p['impacting_share']:.3f}, unresolved {p['unresolved_share']:.3f}, "
                      f"target {exists}")
+    if s["fatal_shock"]:
+        lines.append(f"minimal fatal shock of the target (an upper bound; "
+                     f"{ds.attrs.get('fatal_shock_settings', '')}):")
+        for role, f in s["fatal_shock"].items():
+            name = "pick" if role == "best" else role
+            if f["destination"] is not None:
+                lines.append(f"  {name}: {f['magnitude']:.4g} at t = {float(f['time']):.4g} "
+                             f"-> {f['destination']}")
+            else:
+                lines.append(f"  {name}: " + ("target absent" if f["magnitude"] != f[
+                    "magnitude"] else "none up to the largest shock scanned"))
     return "\n".join(lines)
