@@ -122,7 +122,10 @@ PLOTS = {
         "Basin-stability curves with 95% Wilson bands of a stability RESULT.",
         options=(PlotOption("--against", "against", "Grid axis on the horizontal axis "
                             "(default: the swept one).", kind="choice",
-                            choices=("d", "phi", "k_c", "c_c", "t0")), SHOW_ERROR),
+                            choices=("d", "phi", "k_c", "c_c", "t0")), SHOW_ERROR,
+                 PlotOption("--entropy", "entropy", "Also the basin entropy of the shares "
+                            "H with its 95% bootstrap band (right-hand axis).",
+                            kind="flag")),
         complete=True),
     "map": PlotSpec("Predicted and found numbers of coexisting solutions over two "
                     "parameters.", complete=True),

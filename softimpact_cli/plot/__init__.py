@@ -289,17 +289,18 @@ def basins(ds, ax=None, *, max_panels: int = 36, show_error: bool = False) -> Fi
     return error_note(fig, ds) if show_error else fig
 
 
-def stability(ds, ax=None, *, against: str | None = None, show_error: bool = False
-              ) -> Figure:
+def stability(ds, ax=None, *, against: str | None = None, show_error: bool = False,
+              entropy: bool = False) -> Figure:
     """Basin-stability curves with 95% Wilson bands against the grid axis ``against``
     (default: the swept one). One panel. ``show_error``: print the measured label error
-    at the foot (``error_note``)."""
+    at the foot (``error_note``); ``entropy``: the basin entropy of the shares on a
+    right-hand axis."""
     from ..analysis.stability import basin_stability
     from .stability_figure import draw_stability
 
     swept = str(_expect(ds, "stability").attrs.get("grid_swept", "")).split()
     fig = draw_stability(ds, basin_stability(ds), against or (swept[0] if swept else "c_c"),
-                         ax)
+                         ax, entropy)
     return error_note(fig, ds) if show_error else fig
 
 

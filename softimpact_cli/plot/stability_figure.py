@@ -12,9 +12,11 @@ from .basins_figure import SYMBOLS
 from .palette import IMPACTING, colour_of, solution_order
 
 
-def draw_stability(ds, bs, against: str, ax=None):
+def draw_stability(ds, bs, against: str, ax=None, entropy: bool = False):
     """``bs`` is ``analysis.stability.basin_stability(ds)``; ``against`` a grid axis.
-    One panel (``ax``: an Axes or a Figure, see ``plot``). Returns the matplotlib Figure."""
+    One panel (``ax``: an Axes or a Figure, see ``plot``); ``entropy``: also the basin
+    entropy of the shares H with its 95% bootstrap band, on a right-hand axis of the same
+    panel. Returns the matplotlib Figure."""
     dims = grid_dims(ds)
     x = ds[against].values
     T = float(ds.attrs["forcing_period"])
@@ -63,5 +65,18 @@ def draw_stability(ds, bs, against: str, ax=None):
                  + (f"\nnot drawn: {len(never)} catalogue solution"
                     f"{'s' if len(never) > 1 else ''} that no sample reached"
                     if never else ""), fontsize=9)
-    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    handles, labels = ax.get_legend_handles_labels()
+    if entropy:
+        h_axis = ax.twinx()
+        h = bs["entropy"].squeeze(drop=True).values
+        line, = h_axis.plot(xs, h, "-.", color="tab:purple", marker="s", ms=3,
+                            label="entropy of the shares H (right axis)")
+        h_axis.fill_between(xs, bs["entropy_ci_low"].squeeze(drop=True).values,
+                            bs["entropy_ci_high"].squeeze(drop=True).values,
+                            color="tab:purple", alpha=0.12, lw=0)
+        h_axis.set_ylabel("basin entropy of the shares H (nats)", color="tab:purple")
+        h_axis.set_ylim(bottom=0)
+        handles, labels = handles + [line], labels + [line.get_label()]
+    ax.legend(handles, labels, fontsize=8, loc="center left",
+              bbox_to_anchor=(1.14 if entropy else 1.01, 0.5))
     return root_figure(fig)

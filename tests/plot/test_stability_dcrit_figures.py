@@ -39,6 +39,22 @@ def test_stability_title_has_parameters_and_t0_and_phi_ticks_in_pi():
     assert not fig._suptitle
 
 
+def test_entropy_of_the_shares_on_a_right_hand_axis():
+    """3 of 10 samples in one basin at every phase: H = -(0.3 ln 0.3 + 0.7 ln 0.7)."""
+    ds = stability_sweep()
+    bs = basin_stability(ds)
+    plain = draw_stability(ds, bs, "phi")
+    assert len(plain.axes) == 1
+    fig = draw_stability(ds, bs, "phi", entropy=True)
+    assert len(fig.axes) == 2
+    right = fig.axes[1]
+    assert right.get_ylabel() == "basin entropy of the shares H (nats)"
+    h = -(0.3 * np.log(0.3) + 0.7 * np.log(0.7))
+    np.testing.assert_allclose(right.lines[0].get_ydata(), h)
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert "entropy of the shares H (right axis)" in labels
+
+
 def dcrit_result() -> xr.Dataset:
     phi = np.linspace(0, 2 * np.pi, 9)
     trace_phi = np.array([np.pi / 4, np.pi])
@@ -64,3 +80,19 @@ def test_dcrit_phases_in_multiples_of_pi_and_panel_letters():
     letters = {t.get_text() for ax in fig.axes for t in ax.texts}
     assert {"(a)", "(b)", "(c)"} <= letters
     assert r"\omega = 1.3" in fig.get_suptitle() and "d = 6" not in fig.get_suptitle()
+
+
+def test_plot_stability_entropy_from_the_command_line(tmp_path):
+    from click.testing import CliRunner
+
+    from softimpact_cli.cli import main
+    from softimpact_cli.store import write_result
+
+    ds = stability_sweep()
+    ds.attrs.update({"complete": 1, "scene_text": "", "n": 40})
+    result = write_result(ds, tmp_path / "s.h5")
+    out = tmp_path / "s.png"
+    run = CliRunner().invoke(main, ["plot", "stability", str(result), "-o", str(out),
+                                    "--entropy"])
+    assert run.exit_code == 0, run.output
+    assert out.stat().st_size > 10_000
