@@ -16,11 +16,8 @@ first time compiles (about a minute) without notice; after :func:`compile_all` n
 
 from __future__ import annotations
 
-import multiprocessing
-import os
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -174,26 +171,18 @@ def _run_steps(model: str | None, verbose: bool) -> list[Step]:
     return done
 
 
-def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]:
+def compile_all(verbose: bool = False) -> list[Step]:
     """Run every warm-up step (each compiles what is not cached yet); their wall times.
 
-    With ``workers`` > 1 (default: the cores) each model compiles in its own process;
-    then this process runs every step again, loading what they cached and compiling what
-    they did not save (two processes updating one index file at the same moment can lose
-    an entry). The second pass takes seconds.
+    In this one process, one step after another. Compiling the models in parallel
+    processes corrupted the cache: two processes adding an entry to the index of a shared
+    kernel (``rosenbrock.refine_crossing``) at the same moment both name their code file
+    by the same next number, so one model's index entry can end up pointing at the code
+    compiled for the other's right-hand side; a later run then failed to type the call
+    (seen once in a clean-clone CI run, 2026-11-25). Serial compiling costs about a minute
+    more, once per installed version.
     """
-    from ..systems import MODELS
-
-    workers = min(workers or os.cpu_count() or 1, len(MODELS))
-    done = []
-    if workers > 1:
-        context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(workers, mp_context=context) as pool:
-            for steps in pool.map(_run_steps, MODELS, [verbose] * len(MODELS)):
-                done += steps
-        if verbose:
-            print("  loading every kernel once more:", file=sys.stderr, flush=True)
-    return done + _run_steps(None, verbose)
+    return _run_steps(None, verbose)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -201,8 +190,8 @@ def main(argv: list[str] | None = None) -> int:
     quiet = "-q" in (argv if argv is not None else sys.argv[1:])
     folder = cache_folder()
     if not quiet:
-        print(f"softimpact: compiling numerical kernels into {folder} ({os.cpu_count()} "
-              "cores; a few minutes, once per installed version)", file=sys.stderr, flush=True)
+        print(f"softimpact: compiling numerical kernels into {folder} (a few minutes, once "
+              "per installed version)", file=sys.stderr, flush=True)
     start = time.perf_counter()
     compile_all(verbose=not quiet)
     print(f"softimpact: kernels compiled and cached in {time.perf_counter() - start:.0f} s "
@@ -211,7 +200,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    # run the imported module's main, so that the worker processes find its functions
+    # run the imported module's main (as when it ran worker processes)
     from softimpact_cli.analysis.warmup import main as _main
 
     sys.exit(_main())
