@@ -179,8 +179,8 @@ def compile_all(verbose: bool = False) -> list[Step]:
     kernel (``rosenbrock.refine_crossing``) at the same moment both name their code file
     by the same next number, so one model's index entry can end up pointing at the code
     compiled for the other's right-hand side; a later run then failed to type the call
-    (seen once in a clean-clone CI run, 2026-11-25). Serial compiling costs about a minute
-    more, once per installed version.
+    (seen once in a clean-clone CI run, 2026-11-25). Serial compiling takes longer, once
+    per installed version: 287 s in all on 2 cores (clean clone, 2026-11-25).
     """
     return _run_steps(None, verbose)
 
