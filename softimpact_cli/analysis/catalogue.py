@@ -107,6 +107,14 @@ class Catalogue:
             return tuple(c.name for c in self.combinations)
         return tuple(a.name for a in self.attractors)
 
+    @property
+    def orbits(self) -> dict[str, np.ndarray]:
+        """{name: section points at t = 0 mod T} of the solutions, in code order (a pair's
+        joint (q, 4) orbits, one body's (q, 2))."""
+        if self.right:
+            return {c.name: c.orbit for c in self.combinations}
+        return {a.name: a.points for a in self.attractors}
+
     def combination(self, name: str) -> Combination:
         for combo in self.combinations:
             if combo.name == name:

@@ -38,14 +38,15 @@ def unit_directions(n: int, dim: int, seed: int = 0) -> np.ndarray:
 
 
 def fatal_shocks(orbit: np.ndarray, target: str, label: Labeller, directions: np.ndarray,
-                 max_shock: float, scan: int = 16, tol: float = 1e-3
+                 max_shock: float, scan: int = 16, tol: float = 1e-3, tick=None
                  ) -> tuple[np.ndarray, np.ndarray]:
     """(magnitude (M, N), destination (M, N)): along each direction at each phase, the
     smallest fatal shock found (inf and "" when none up to ``max_shock``) and the label it
     leads to.
 
     orbit : (M, dim) states of the solution at its M phases; label(states, k) names the
-    attractor each start at phase k reaches; directions : (N, dim) unit vectors.
+    attractor each start at phase k reaches; directions : (N, dim) unit vectors;
+    tick(1) : called after each phase (progress).
     """
     if not max_shock > 0 or scan < 1 or not tol > 0:
         raise ValueError(f"max_shock > 0, scan >= 1 and tol > 0 needed, got {max_shock}, "
@@ -78,16 +79,19 @@ def fatal_shocks(orbit: np.ndarray, target: str, label: Labeller, directions: np
             lo[idx[~away]] = mid[~away]
         magnitude[k] = hi
         destination[k] = dest
+        if tick is not None:
+            tick(1)
     return magnitude, destination.astype(str)
 
 
 def fatal_shock_dataset(orbit: np.ndarray, times: np.ndarray, target: str,
                         label: Labeller, directions: np.ndarray, max_shock: float,
-                        scan: int, tol: float, variables: tuple[str, ...]) -> xr.Dataset:
+                        scan: int, tol: float, variables: tuple[str, ...], tick=None
+                        ) -> xr.Dataset:
     """The search as a result: every (phase, direction) value and the minimum with its
     phase, direction and destination (attributes ``mfs_*``)."""
     magnitude, destination = fatal_shocks(orbit, target, label, directions, max_shock, scan,
-                                          tol)
+                                          tol, tick)
     ds = xr.Dataset(
         {"shock_magnitude": (("shock_phase", "shock_direction"), magnitude,
                              {"long_name": "smallest fatal shock found along the direction "

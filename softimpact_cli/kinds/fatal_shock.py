@@ -59,14 +59,9 @@ def sections(analysis, ctx) -> Sections:
 
 def solution_orbit(scene, catalogue) -> np.ndarray:
     """The section points (t = 0 mod T) of the scene's solution in its catalogue."""
-    from ..analysis.labels import Label
     from ..config.reader import ConfigError
 
-    if scene.system.bodies == 2:
-        found = {c.name: c.orbit for c in catalogue.combinations}
-    else:
-        found = {Label("body", a.period, a.number).name: a.points
-                 for a in catalogue.attractors}
+    found = catalogue.orbits
     name = scene.analysis.solution
     if name not in found:
         raise ConfigError(f"{scene.source}: [analysis] solution: {name!r} is not in the "
@@ -92,37 +87,15 @@ def run(scene, progress=None, workers=None, **_):
     directions = unit_directions(a.directions, len(names),
                                  None if len(names) == 2 else a.seed)
     point = {k: float(scene.values[k]) for k in GRID_AXES if k in scene.values}
-    sweepable = replace_for_labels(scene, point, names)
     tick = progress(a.phases) if progress else None
 
     def label(states, k):
-        out = label_states(sweepable, point, states, float(times[k]), workers)
-        if tick and k == label.phase + 1:
-            tick(1)
-        label.phase = max(label.phase, k)
-        return out
+        return label_states(scene, point, states, float(times[k]), workers)
 
-    label.phase = -1
     ds = fatal_shock_dataset(orbit, times, a.solution, label, directions, a.max_shock,
-                             a.scan, a.tol, names)
-    if tick:
-        tick(1)
+                             a.scan, a.tol, names, tick)
     ds.attrs["forcing_period"] = T
     return ds
-
-
-def replace_for_labels(scene, point: dict, names: tuple[str, ...]):
-    """The scene as ``sweep.label_states`` needs it: a one-point grid and a list of
-    initial conditions (replaced by each call), basins analysis."""
-    from dataclasses import replace
-
-    from ..config.sweep import GRID_AXES, Grid, InitialConditions
-    from .sweeps import SweepAnalysis
-
-    grid = Grid({k: (float(point.get(k, 0.0)),) for k in GRID_AXES}, ())
-    ic = InitialConditions(kind="list", state_names=names, states=((0.0,) * len(names),))
-    return replace(scene, grid=grid, initial_conditions=ic,
-                   analysis=SweepAnalysis(kind="basins"))
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:

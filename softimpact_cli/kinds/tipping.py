@@ -15,7 +15,16 @@ import numpy as np
 
 from ..config.reader import ConfigError
 from . import AnalysisKind, PlotOption, PlotSpec, Sections
-from .sweeps import SHOW_ERROR, _reader, check, compare, compare_text, outcome_counts, plan
+from .sweeps import (
+    SHOW_ERROR,
+    _reader,
+    check,
+    compare,
+    compare_text,
+    outcome_counts,
+    plan,
+    shrink,
+)
 from .sweeps import sections as sweep_sections
 from .sweeps import summary as sweep_summary
 
@@ -29,16 +38,10 @@ def sections(analysis, ctx) -> Sections:
     return read
 
 
-def tipping_shrink(analysis, grid, axis: int):
-    """--quick keeps both points (the planes and samples shrink as for every kind)."""
-    return analysis, grid, ""
-
-
 def add_tipping(ds, scene, catalogue):
     """The sweep's extra variables: the tipping matrix and the solutions' destinations."""
     import xarray as xr
 
-    from ..analysis.labels import Label
     from ..analysis.tipping import attractor_destinations, tipping_probabilities
     from ..report.info import grid_dims
     from ..sweep import label_states
@@ -50,12 +53,7 @@ def add_tipping(ds, scene, catalogue):
     table = dict(zip(codes, (str(n) for n in ds["label_name"].values), strict=True))
     matrix = tipping_probabilities(label[0], label[1], table)
     present = {table[int(c)] for c in np.unique(label[0])}
-    if scene.system.bodies == 2:
-        orbits = {c.name: c.orbit for c in catalogue.combinations if c.name in present}
-    else:
-        orbits = {Label("body", a.period, a.number).name: a.points
-                  for a in catalogue.attractors
-                  if Label("body", a.period, a.number).name in present}
+    orbits = {name: o for name, o in catalogue.orbits.items() if name in present}
     after = scene.grid.point(1)
     destinations = attractor_destinations(orbits, lambda states: label_states(
         scene, after, states, 0.0))
@@ -95,7 +93,7 @@ def info_after(ds) -> list[str]:
 
 KINDS = (AnalysisKind(
     "tipping", "tipping probabilities: where basins and solutions go between two points",
-    _reader("tipping"), plan, sections=sections, shrink=tipping_shrink, check=check,
+    _reader("tipping"), plan, sections=sections, shrink=shrink, check=check,
     summary=summary, after_sweep=add_tipping, info_after=info_after,
     outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
     progress_unit="trajectories",

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..kernels.codes import CLASSIFIED_BY
@@ -344,9 +346,11 @@ def format_design(ds) -> str:
         for role, f in s["fatal_shock"].items():
             name = "pick" if role == "best" else role
             if f["destination"] is not None:
-                lines.append(f"  {name}: {f['magnitude']:.4g} at t = {float(f['time']):.4g} "
-                             f"-> {f['destination']}")
+                text = f"{f['magnitude']:.4g} at t = {float(f['time']):.4g} -> " \
+                       f"{f['destination']}"
+            elif math.isnan(f["magnitude"]):
+                text = "target absent"
             else:
-                lines.append(f"  {name}: " + ("target absent" if f["magnitude"] != f[
-                    "magnitude"] else "none up to the largest shock scanned"))
+                text = "none up to the largest shock scanned"
+            lines.append(f"  {name}: {text}")
     return "\n".join(lines)

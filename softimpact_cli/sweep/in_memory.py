@@ -66,20 +66,22 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
 def label_states(scene: Scene, point: dict, states: np.ndarray, t0: float = 0.0,
                  workers: int | None = 1) -> list[str]:
     """Label names of ``states`` (n, dim), imposed at time ``t0``, at the parameter
-    ``point`` ({axis: value} over d, phi, k_c, c_c) of ``scene``'s system, with its
-    integrator and catalogue settings: a basins sweep over that list of states."""
+    ``point`` ({axis: value} over d, phi, k_c, c_c; the scene's values elsewhere) of
+    ``scene``'s system, with its integrator and [catalogue] settings: a basins sweep
+    over that list of states (any kind's scene will do)."""
     from dataclasses import replace
 
-    from ..config.sweep import Grid
+    from ..config.sweep import GRID_AXES, Grid, InitialConditions
+    from ..kinds.sweeps import SweepAnalysis
 
-    values = {**point, "t0": float(t0)}  # axes not in point keep the grid's first value
-    grid = Grid({a: (float(values.get(a, v[0])),) for a, v in scene.grid.axes.items()}, ())
-    ic = replace(scene.initial_conditions, kind="list", axes=(), ranges=(), resolution=(),
-                 fixed=None, box=None, n=0, states=tuple(map(tuple, np.asarray(
-                     states, dtype=float).tolist())), t0=float(t0))
-    sub = replace(scene, grid=grid, initial_conditions=ic,
-                  analysis=replace(scene.analysis, kind="basins"))
-    ds = sweep_in_memory(sub, workers=workers)
+    values = {**scene.values, **point, "t0": float(t0)}
+    grid = Grid({a: (float(values.get(a, 0.0)),) for a in GRID_AXES}, ())
+    ic = InitialConditions(kind="list", state_names=tuple(scene.system.state_names),
+                           states=tuple(map(tuple, np.asarray(states, float).tolist())),
+                           t0=float(t0))
+    analysis = SweepAnalysis("basins", getattr(scene.analysis, "label_tol", 1e-3))
+    ds = sweep_in_memory(replace(scene, grid=grid, initial_conditions=ic,
+                                 analysis=analysis), workers=workers)
     table = {int(c): str(n) for c, n in zip(ds["label_code"].values,
                                             ds["label_name"].values, strict=True)}
     return [table[int(c)] for c in ds["label"].values.ravel()]

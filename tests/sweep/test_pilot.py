@@ -14,29 +14,11 @@ from softimpact_cli.kinds.check import sample_indices
 from softimpact_cli.report.verification import pilot_line
 from softimpact_cli.sweep import pilot
 from softimpact_cli.sweep import verification as v
+from tests.sweep.test_verification import PLANE
 
 # figure 6(d)'s smooth Duffing plane at 32 x 32 = 1024 >= 50 x 20 trajectories
-SMOOTH = """
-[system]
-model = "duffing"
-[coupling]
-d = 6.0
-phi = 0.0
-k_c = 8.0
-c_c = 10.0
-[analysis]
-kind = "basins"
-[initial_conditions]
-kind = "plane"
-axes = ["x1", "x2"]
-ranges = [[-12.0, 12.0], [-12.0, 12.0]]
-resolution = [32, 32]
-[catalogue]
-grid = 6
-random = 30
-[verification]
-pilot_sample = 20
-"""
+SMOOTH = (PLANE.replace("resolution = [16, 16]", "resolution = [32, 32]")
+          + "[verification]\npilot_sample = 20\n")
 
 # figure 12(a)'s fractal bilinear plane (d = 10, phi = pi), where looser tolerances move
 # 2-16% of the labels between the two phase-shifted copies of the period-2 orbit
