@@ -29,7 +29,7 @@ from ..systems import System
 
 # the modules declaring kinds, in the order `--help` lists them
 MODULES = ("trajectory", "catalogue", "sweeps", "tipping", "fatal_shock", "dcrit", "bifurcation",
-           "design", "fractality", "lyapunov")
+           "design", "fractality", "lyapunov", "continuation")
 
 
 @dataclass(frozen=True)
@@ -216,7 +216,7 @@ def _load() -> dict[str, AnalysisKind]:
 _LOADED = _load()
 # the order messages and --help list them in; new kinds follow
 _ORDER = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
-          "tipping", "fatal_shock", "design", "fractality", "lyapunov")
+          "tipping", "fatal_shock", "design", "fractality", "lyapunov", "continuation")
 KINDS: dict[str, AnalysisKind] = {name: _LOADED[name] for name in _ORDER if name in _LOADED}
 KINDS.update({name: kind for name, kind in _LOADED.items() if name not in KINDS})
 ANALYSIS_KINDS = tuple(KINDS)

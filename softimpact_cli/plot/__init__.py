@@ -260,6 +260,15 @@ def lyapunov(ds, ax=None) -> Figure:
     return draw_lyapunov(_expect(ds, "lyapunov"), ax)
 
 
+def continuation(ds, ax=None) -> Figure:
+    """Branches against the continued parameter (one panel per body; stable solid,
+    unstable dashed, bifurcations marked, brute-force sweeps overlaid) above the moduli
+    of their Floquet multipliers."""
+    from .continuation_figure import draw_continuation
+
+    return draw_continuation(_expect(ds, "continuation"), ax)
+
+
 def error_note(fig, ds) -> Figure:
     """Print the result's verification line (its measured label error, see
     ``report.verification``) at the foot of ``fig``; returns ``fig``."""
@@ -367,7 +376,7 @@ def fractality(ds, ax=None, *, max_panels: int = 8) -> Figure:
 
 KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
          "tipping", "fatal_shock", "design", "fractality",
-         "lyapunov")  # the functions above, by analysis kind
+         "lyapunov", "continuation")  # the functions above, by analysis kind
 
 
 def _expect(ds, kind: str):

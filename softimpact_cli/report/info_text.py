@@ -20,7 +20,7 @@ NOT_FIXED = {
 SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
                    "combinations", "branches", "d_crit", "orbit", "variables", "target",
                    "best", "runners_up", "reference", "robustness", "verification", "tipping",
-                   "fractality", "spectra", "fatal_shock"}
+                   "fractality", "spectra", "fatal_shock", "continuation"}
 
 
 def text(value) -> str:

@@ -1,0 +1,223 @@
+"""Pseudo-arclength continuation of fixed points of the p-th stroboscopic map.
+
+A branch is a curve u(s) = (y(s), lam(s)) in R^(n+1) of solutions of
+``G(y, lam) = P^p_lam(y) - y = 0`` (``analysis/shooting.py``), parametrised by arclength s
+in the plain Euclidean norm of (y, lam). From a point u_k with unit tangent t_k
+(``J t = 0``, ``J = [M - I | dG/dlam]``, oriented by the previous tangent):
+
+- predictor ``u_pred = u_k + h t_k``;
+- corrector: Newton on ``G(u) = 0, t_k . (u - u_pred) = 0``, whose matrix ``[J; t_k^T]``
+  is regular at regular points and at folds alike (that is why folds are passed, and the
+  unstable orbit between two folds is found);
+- step control: ``h`` grows by GROW after an easy correction (at most EASY Newton steps),
+  shrinks by SHRINK after a hard one, and is halved and retried when Newton fails, when
+  the tangent turns by more than MAX_TURN radians or the state jumps by more than
+  ``max_step`` (what keeps the corrector from hopping onto a neighbouring branch); below
+  ``min_step`` the branch ends ("step too small").
+
+A branch ends at the parameter bounds (the last point placed on the bound exactly, by
+Newton at fixed lam), after ``max_points`` points, or when the integration fails. The
+Floquet multipliers (eigenvalues of M) are kept at every point; the test functions and
+the location of bifurcations are ``analysis/continuation_events.py``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .shooting import MapValue, OrbitMap
+
+GROW, SHRINK, EASY, HARD = 1.5, 0.6, 3, 6
+MAX_TURN = 0.35  # radians between successive tangents
+MAX_NEWTON = 12
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How a branch is followed (see the ``[analysis]`` keys of ``kinds/continuation.py``).
+
+    bounds : (low, high) of the parameter; step, min_step, max_step : arclength steps in
+    the Euclidean norm of (state, parameter); max_points : points per direction;
+    tol : Newton tolerance on |G|_inf (and on the last update)
+    """
+
+    bounds: tuple[float, float]
+    step: float = 0.02
+    min_step: float = 1e-6
+    max_step: float = 0.2
+    max_points: int = 400
+    tol: float = 1e-10
+
+
+@dataclass
+class Point:
+    """One solution on a branch: u = (y, lam) (n + 1,), the map there, the unit tangent
+    (n + 1,), the arclength step that reached it and the Newton steps it took."""
+
+    u: np.ndarray
+    value: MapValue
+    tangent: np.ndarray
+    step: float = 0.0
+    newton: int = 0
+
+    @property
+    def state(self) -> np.ndarray:
+        return self.u[:-1]
+
+    @property
+    def parameter(self) -> float:
+        return float(self.u[-1])
+
+    @property
+    def multipliers(self) -> np.ndarray:
+        """(n,) complex Floquet multipliers, largest modulus first."""
+        mu = np.linalg.eigvals(self.value.monodromy).astype(complex)
+        return mu[np.argsort(-np.abs(mu), kind="stable")]
+
+    @property
+    def stable(self) -> bool:
+        return bool(np.all(np.abs(self.multipliers) < 1.0))
+
+    @property
+    def impacting(self) -> bool:
+        return self.value.max_g >= 0.0
+
+
+@dataclass
+class Leg:
+    """The points of one direction of a branch, in order of arclength, and why it ended."""
+
+    points: list[Point] = field(default_factory=list)
+    end: str = ""
+
+
+def tangent(value: MapValue, previous: np.ndarray | None, sign: float = 1.0) -> np.ndarray:
+    """Unit null vector of J (n, n+1): oriented along ``previous`` when given, else with
+    sign(lam component) = ``sign`` (the null vector of the SVD)."""
+    J = value.jacobian
+    if previous is None:
+        t = np.linalg.svd(J)[2][-1]
+        if t[-1] * sign < 0 or (t[-1] == 0 and sign < 0):
+            t = -t
+        return t / np.linalg.norm(t)
+    A = np.vstack([J, previous])
+    rhs = np.zeros(J.shape[1])
+    rhs[-1] = 1.0
+    t = np.linalg.solve(A, rhs)
+    return t / np.linalg.norm(t)
+
+
+def correct(orbit_map: OrbitMap, u_pred: np.ndarray, normal: np.ndarray | None, tol: float,
+            ) -> tuple[np.ndarray, MapValue, int] | None:
+    """Newton on G(u) = 0 with ``normal . (u - u_pred) = 0`` (``normal`` None: lam fixed at
+    ``u_pred[-1]``). Returns (u, map value at u, Newton steps) or None when it fails."""
+    u = np.array(u_pred, dtype=float)
+    n = u.size - 1
+    fixed = np.zeros(n + 1)
+    fixed[-1] = 1.0
+    row = fixed if normal is None else normal
+    last = np.inf
+    for k in range(MAX_NEWTON):
+        value = orbit_map.evaluate(u[:n], u[-1])
+        if not value.ok or not np.all(np.isfinite(value.jacobian)):
+            return None
+        residual = float(np.max(np.abs(value.residual)))
+        if residual <= tol and last <= max(tol, 1e-8) * max(1.0, np.max(np.abs(u))):
+            return u, value, k
+        A = np.vstack([value.jacobian, row])
+        b = np.concatenate([value.residual, [row @ (u - u_pred)]])
+        try:
+            du = np.linalg.solve(A, b)
+        except np.linalg.LinAlgError:
+            return None
+        if not np.all(np.isfinite(du)):
+            return None
+        u = u - du
+        last = float(np.max(np.abs(du)))
+    return None
+
+
+def start_point(orbit_map: OrbitMap, state, lam: float, tol: float) -> Point | None:
+    """Newton at fixed lam from ``state``: the first point of a branch (no tangent yet)."""
+    u0 = np.append(np.asarray(state, dtype=float), float(lam))
+    found = correct(orbit_map, u0, None, tol)
+    if found is None:
+        return None
+    u, value, k = found
+    return Point(u, value, np.full(u.size, np.nan), 0.0, k)
+
+
+def step_from(orbit_map: OrbitMap, point: Point, h: float, tol: float
+              ) -> tuple[np.ndarray, MapValue, int] | None:
+    """The corrected point at arclength step h along ``point.tangent`` (None: Newton fails)."""
+    return correct(orbit_map, point.u + h * point.tangent, point.tangent, tol)
+
+
+def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 1.0,
+           on_point=None) -> Leg:
+    """Follow the branch from ``first`` (a corrected point) in the direction of growing
+    lam (sign +1) or falling lam (-1), or along ``first.tangent`` when it is set.
+
+    on_point(leg) -> str : called after each accepted point; a non-empty answer ends the
+    leg with that reason (the events module stops a branch that is lost this way).
+    """
+    low, high = settings.bounds
+    if not np.all(np.isfinite(first.tangent)):
+        first.tangent = tangent(first.value, None, sign)
+    leg = Leg([first])
+    h = settings.step
+    while len(leg.points) < settings.max_points:
+        here = leg.points[-1]
+        found = step_from(orbit_map, here, h, settings.tol)
+        accepted = None
+        if found is not None:
+            u, value, k = found
+            t_new = tangent(value, here.tangent)
+            turn = np.arccos(np.clip(t_new @ here.tangent, -1.0, 1.0))
+            jump = float(np.max(np.abs(u - here.u)))
+            if turn <= MAX_TURN and jump <= max(settings.max_step, 2 * h):
+                accepted = Point(u, value, t_new, h, k)
+        if accepted is None:
+            h *= 0.5
+            if h < settings.min_step:
+                leg.end = "step too small"
+                return leg
+            continue
+        lam = accepted.parameter
+        if lam < low or lam > high:
+            edge = high if lam > high else low
+            ends = bound_point(orbit_map, here, accepted, edge, settings.tol)
+            if ends is not None:
+                leg.points.append(ends)
+                if on_point is not None:
+                    on_point(leg)
+            leg.end = f"parameter bound {edge:g}"
+            return leg
+        leg.points.append(accepted)
+        if on_point is not None:
+            reason = on_point(leg)
+            if reason:
+                leg.end = reason
+                return leg
+        h = min(h * GROW, settings.max_step) if accepted.newton <= EASY else \
+            h * SHRINK if accepted.newton >= HARD else h
+    leg.end = "max points"
+    return leg
+
+
+def bound_point(orbit_map: OrbitMap, before: Point, after: Point, edge: float, tol: float
+                ) -> Point | None:
+    """The solution at lam = edge between two points of a branch (Newton at fixed lam from
+    the linear interpolation), with the tangent oriented as ``after``'s."""
+    a, b = before.parameter, after.parameter
+    w = (edge - a) / (b - a)
+    guess = (1 - w) * before.u + w * after.u
+    guess[-1] = edge
+    found = correct(orbit_map, guess, None, tol)
+    if found is None:
+        return None
+    u, value, k = found
+    return Point(u, value, tangent(value, after.tangent), float(np.linalg.norm(u - before.u)),
+                 k)

@@ -1,0 +1,188 @@
+"""Bifurcations and grazing along a branch: test functions, their zeros, branch switching.
+
+With the Floquet multipliers mu_i of a point (eigenvalues of the monodromy M, n of them):
+
+- fold / branch point: ``psi_LP = Re prod (mu_i - 1)`` (= ±det(M - I)); a real multiplier
+  through +1. A fold when the parameter component of the tangent turns (the branch turns
+  back), else a branch point (another branch crosses; reported, not switched onto);
+- period doubling: ``psi_PD = Re prod (mu_i + 1)``; a real multiplier through -1;
+- Neimark-Sacker: ``psi_NS = Re prod_{i<j} (mu_i mu_j - 1)`` (the bialternate product's
+  determinant); zero when a complex pair crosses the unit circle, but also at a "neutral
+  saddle" (two real multipliers with product 1), which is not reported;
+- grazing (a pair): ``psi_G = max over the orbit of (x1 - x2) - d``, the orbit touching
+  the stop. Signs are compared on the kernels' located maximum; the zero is located on
+  the maximum refined by ``critical_distance.locate_maximum`` (root of v1 - v2 on the
+  flow, to 1e-12 in time), so the grazing parameter is exact to the integration
+  tolerance, as the critical distances are.
+
+Between two consecutive points whose test function differs in sign, the zero is located
+by bisection safeguarded with the Illinois secant step on the arclength step sigma from
+the left point (each trial point corrected on the hyperplane normal to the left
+tangent), until the bracket is below LOCATE_TOL in arclength or |psi| below its floor.
+
+Branch switching at a period doubling of a period-p orbit: the doubled orbit is a fixed
+point of P^(2p), which the old orbit also is; at the bifurcation the new branch leaves
+along the eigenvector v of M for mu = -1. :func:`doubled_direction` gives the predictor
+direction (v, 0) made orthogonal to the old branch's tangent, so the corrector's
+hyperplane does not cut the old branch near the bifurcation.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .continuation import Point, correct, tangent
+from .critical_distance import critical_distance
+from .shooting import OrbitMap
+
+EVENT_KINDS = ("fold", "branch point", "period doubling", "Neimark-Sacker", "grazing")
+LOCATE_TOL = 1e-12  # bracket in arclength
+MAX_BISECTIONS = 80
+COMPLEX_TOL = 1e-7  # |Im mu| above this: a complex pair (Neimark-Sacker, not neutral saddle)
+
+
+@dataclass
+class Event:
+    """A located bifurcation: its kind (EVENT_KINDS), the point, and the index of the
+    branch point before it in the leg it was found on."""
+
+    kind: str
+    point: Point
+    after: int
+
+
+def multiplier_tests(multipliers: np.ndarray) -> np.ndarray:
+    """(3,) [psi_LP, psi_PD, psi_NS] of (n,) complex multipliers."""
+    mu = np.asarray(multipliers, dtype=complex)
+    n = mu.size
+    pairs = [mu[i] * mu[j] - 1.0 for i in range(n) for j in range(i + 1, n)]
+    return np.array([np.prod(mu - 1.0).real, np.prod(mu + 1.0).real,
+                     np.prod(pairs).real if pairs else 1.0])
+
+
+def gap(orbit_map: OrbitMap, point: Point, precise: bool = False) -> float:
+    """max over the orbit of x1 - x2, minus d: < 0 apart, >= 0 touching (pairs only)."""
+    if not precise:
+        return float(point.value.max_g)
+    problem = orbit_map.problem(point.parameter)
+    top, _ = critical_distance(problem, point.state, orbit_map.periods)
+    return top - float(problem.values["d"])
+
+
+def test_values(orbit_map: OrbitMap, point: Point) -> np.ndarray:
+    """(4,) [psi_LP, psi_PD, psi_NS, psi_G] at a point (psi_G NaN for one body)."""
+    g = gap(orbit_map, point) if orbit_map.system.bodies == 2 else np.nan
+    return np.append(multiplier_tests(point.multipliers), g)
+
+
+def _test(orbit_map: OrbitMap, point: Point, which: int) -> float:
+    if which == 3:
+        return gap(orbit_map, point, precise=True)
+    return float(multiplier_tests(point.multipliers)[which])
+
+
+def locate(orbit_map: OrbitMap, left: Point, right: Point, which: int, tol: float
+           ) -> Point | None:
+    """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing) between two
+    consecutive points of a leg (``right`` = the step ``right.step`` from ``left``)."""
+    a, b = 0.0, right.step
+    fa, fb = _test(orbit_map, left, which), _test(orbit_map, right, which)
+    if which == 3 and np.sign(fa) == np.sign(fb):  # kernel max and precise max disagree
+        return right if abs(fb) < abs(fa) else left
+    best = right if abs(fb) < abs(fa) else left
+    side = 0
+    floor = 1e-14 if which < 3 else 1e-12
+    for _ in range(MAX_BISECTIONS):
+        if b - a <= LOCATE_TOL * max(1.0, right.step):
+            break
+        m = (a * fb - b * fa) / (fb - fa) if fb != fa else 0.5 * (a + b)
+        if not a + 0.01 * (b - a) < m < b - 0.01 * (b - a):
+            m = 0.5 * (a + b)
+        found = correct(orbit_map, left.u + m * left.tangent, left.tangent, tol)
+        if found is None:
+            return None
+        u, value, k = found
+        best = Point(u, value, tangent(value, left.tangent), m, k)
+        fm = _test(orbit_map, best, which)
+        if abs(fm) <= floor:
+            break
+        if np.sign(fm) == np.sign(fa):
+            a, fa = m, fm
+            if side == 1:
+                fb *= 0.5
+            side = 1
+        else:
+            b, fb = m, fm
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    return best
+
+
+def classify(which: int, left: Point, right: Point, located: Point) -> str | None:
+    """The event's name, or None when the sign change is no bifurcation of that kind."""
+    if which == 0:
+        return "fold" if left.tangent[-1] * right.tangent[-1] < 0 else "branch point"
+    if which == 1:
+        return "period doubling"
+    if which == 2:
+        mu = located.multipliers
+        n = mu.size
+        pairs = [(abs(mu[i] * mu[j] - 1.0), i, j) for i in range(n) for j in range(i + 1, n)]
+        _, i, j = min(pairs)
+        complex_pair = abs(mu[i].imag) > COMPLEX_TOL and abs(mu[i] - np.conj(mu[j])) < 1e-6
+        return "Neimark-Sacker" if complex_pair else None
+    return "grazing"
+
+
+def detect(orbit_map: OrbitMap, left: Point, right: Point, tol: float) -> list[Event]:
+    """Every event between two consecutive points, located, in the order of arclength."""
+    before, after = test_values(orbit_map, left), test_values(orbit_map, right)
+    events = []
+    for which in range(4):
+        if not (np.isfinite(before[which]) and np.isfinite(after[which])):
+            continue
+        if which == 3:
+            changed = (before[which] >= 0.0) != (after[which] >= 0.0)
+        else:
+            changed = np.sign(before[which]) * np.sign(after[which]) < 0
+        if not changed:
+            continue
+        located = locate(orbit_map, left, right, which, tol)
+        if located is None:
+            continue
+        kind = classify(which, left, right, located)
+        if kind is not None:
+            events.append(Event(kind, located, -1))
+    events.sort(key=lambda e: e.point.step)
+    return events
+
+
+def doubled_direction(point: Point) -> np.ndarray:
+    """(n + 1,) unit predictor direction onto the period-doubled branch at a located period
+    doubling: the eigenvector of the multiplier nearest -1, lam fixed, made orthogonal to
+    the branch's tangent."""
+    mu, vectors = np.linalg.eig(point.value.monodromy)
+    v = np.real(vectors[:, int(np.argmin(np.abs(mu + 1.0)))])
+    d = np.append(v / np.linalg.norm(v), 0.0)
+    t = point.tangent
+    d = d - (d @ t) * t
+    return d / np.linalg.norm(d)
+
+
+def switch_to_doubled(orbit_map: OrbitMap, point: Point, step: float, tol: float
+                      ) -> Point | None:
+    """The first point of the doubled branch (a fixed point of P^(2p)) at arclength
+    ``step`` from a located period doubling, its tangent set; None when Newton fails."""
+    doubled = orbit_map.with_periods(2 * orbit_map.periods)
+    direction = doubled_direction(point)
+    found = correct(doubled, point.u + step * direction, direction, tol)
+    if found is None:
+        return None
+    u, value, k = found
+    status, image, _ = orbit_map.image(u[:-1], u[-1])
+    if status != 0 or np.max(np.abs(image - u[:-1])) < 0.1 * step:  # fell onto the old one
+        return None
+    return Point(u, value, tangent(value, direction), step, k)

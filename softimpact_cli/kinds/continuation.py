@@ -1,0 +1,198 @@
+"""[analysis] kind = "continuation": branches of periodic orbits, stable and unstable,
+followed in one parameter by pseudo-arclength continuation, with folds, period doublings,
+Neimark-Sacker points and grazing located (``analysis/continuation*.py``)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..config.reader import ConfigError, positive
+from ..config.sweep import read_catalogue
+from . import AnalysisKind, PlotSpec, Sections, read_state
+
+STARTS = ("catalogue", "state")
+QUICK_POINTS = 60  # --quick: points per direction of a branch
+MAX_POINTS = 100_000
+
+
+@dataclass(frozen=True)
+class ContinuationAnalysis:
+    """[analysis] kind = "continuation".
+
+    parameter : the continued parameter (d, phi, k_c, c_c for a pair; F, w always); it
+        starts at the scene's value, which must lie in [low, high]
+    start : "catalogue" (every attractor or combination of the [catalogue] search, or
+        those named in ``branches``) or "state" (the periodic orbit a trajectory from
+        ``state`` at t = 0 converges to)
+    step, min_step, max_step : arclength steps in the Euclidean norm of (state, parameter)
+    max_points : points per direction of each branch
+    tolerance : Newton tolerance on |P^p(y) - y|_inf
+    switch_depth : period doublings switched onto, nested (0: none)
+    brute_force_step : the brute-force sweep's parameter step, up and down from each
+        start (0: no sweep)
+    """
+
+    kind: str
+    parameter: str
+    low: float
+    high: float
+    start: str = "catalogue"
+    state: tuple[float, ...] | None = None
+    branches: tuple[str, ...] = ()
+    step: float = 0.02
+    min_step: float = 1e-6
+    max_step: float = 0.2
+    max_points: int = 400
+    tolerance: float = 1e-10
+    switch_depth: int = 1
+    brute_force_step: float = 0.0
+
+
+def read(sec, ctx) -> ContinuationAnalysis:
+    from ..analysis.shooting import PARAMETERS
+
+    allowed = tuple(p for p, bodies in PARAMETERS.items() if ctx.system.bodies in bodies)
+    parameter = sec.choice("parameter", None, allowed)
+    low, high = sec.number("low", None), sec.number("high", None)
+    if not low < high:
+        raise sec.fail("high", f"must be > low ({low!r}), got {high!r}")
+    value = float(ctx.values[parameter])
+    if not low <= value <= high:
+        raise sec.fail("low", f"the branch starts at the scene's {parameter} = {value!r}, "
+                              f"which must lie in [low, high] = [{low!r}, {high!r}]")
+    start = sec.choice("start", "catalogue", STARTS)
+    state = None
+    if start == "state":
+        if not sec.has("state"):
+            raise sec.fail("state", f"is required with start = 'state': the initial "
+                                    f"{', '.join(ctx.system.state_names)} at t = 0")
+        state = read_state(sec, "state", ctx.system)
+    elif sec.has("state"):
+        raise sec.fail("state", "not used with start = 'catalogue'")
+    raw = sec.raw("branches", [])
+    if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
+        raise sec.fail("branches", f"must be a list of catalogue names like 'L1^1' or "
+                                   f"'L1^1 R1-0^2', got {raw!r}")
+    if raw and start != "catalogue":
+        raise sec.fail("branches", "only with start = 'catalogue'")
+    step = sec.number("step", 0.02, positive)
+    a = ContinuationAnalysis(
+        "continuation", parameter, low, high, start, state, tuple(raw), step,
+        min_step=sec.number("min_step", min(1e-6, step), positive),
+        max_step=sec.number("max_step", max(0.2, step), positive),
+        max_points=sec.integer("max_points", 400, 2, MAX_POINTS),
+        tolerance=sec.number("tolerance", 1e-10, positive),
+        switch_depth=sec.integer("switch_depth", 1, 0, 6),
+        brute_force_step=sec.number("brute_force_step", 0.0,
+                                    lambda v: None if v >= 0 else "must be >= 0"))
+    if not a.min_step <= a.step <= a.max_step:
+        raise sec.fail("step", f"must lie in [min_step, max_step] = [{a.min_step!r}, "
+                               f"{a.max_step!r}], got {a.step!r}")
+    if a.brute_force_step and (high - low) / a.brute_force_step > MAX_POINTS:
+        raise sec.fail("brute_force_step", f"{(high - low) / a.brute_force_step:.0f} steps; "
+                                           f"at most {MAX_POINTS}")
+    return a
+
+
+def sections(analysis, ctx) -> Sections:
+    ctx.refuse("grid", "initial_conditions")
+    if analysis.start == "state":
+        ctx.refuse("catalogue")
+        return Sections(analysis)
+    return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
+                                                       ctx.system.extra["catalogue_box"]))
+
+
+def shrink(analysis, grid, axis: int):
+    bf = analysis.brute_force_step
+    span = analysis.high - analysis.low
+    return (replace(analysis, max_points=min(analysis.max_points, QUICK_POINTS),
+                    brute_force_step=max(bf, span / 40) if bf else 0.0), grid,
+            f", at most {QUICK_POINTS} points per direction")
+
+
+def starts(scene) -> list[tuple[str, object, int]]:
+    """(name, state at t = 0, period) of every start of the scene."""
+    a = scene.analysis
+    if a.start == "state":
+        from ..analysis.engine import Problem, classify_state
+        from ..kernels.codes import CONVERGED
+
+        cls = classify_state(Problem(scene.system, scene.values, scene.integrator), a.state)
+        if cls.status != CONVERGED:
+            raise ConfigError(f"{scene.source}: [analysis] state: the trajectory from it does "
+                              f"not converge to a periodic orbit ({cls.outcome}); start "
+                              f"closer to one or use start = 'catalogue'")
+        return [(f"orbit from state (period {cls.period})", cls.orbit[-1], cls.period)]
+    from ..analysis.catalogue import scene_catalogue
+
+    cat = scene_catalogue(scene)
+    for name in a.branches:
+        if name not in cat.names:
+            raise ConfigError(f"{scene.source}: [analysis] branches: {name!r} is not in the "
+                              f"catalogue ({', '.join(cat.names)})")
+    orbits = cat.orbits
+    return [(name, orbit[0], orbit.shape[0]) for name, orbit in orbits.items()
+            if not a.branches or name in a.branches]
+
+
+def run(scene, progress=None, **_):
+    from ..analysis.continuation import Settings
+    from ..analysis.continuation_branches import continue_starts
+    from ..analysis.continuation_dataset import continuation_dataset
+    from ..analysis.continuation_sweep import sweeps
+    from ..analysis.shooting import OrbitMap
+
+    a = scene.analysis
+    values = dict(scene.values)
+    lam0 = float(values[a.parameter])
+    chosen = starts(scene)
+    base = OrbitMap(scene.system, values, a.parameter, 1)
+    settings = Settings((a.low, a.high), a.step, a.min_step, a.max_step, a.max_points,
+                        a.tolerance)
+    tick = progress(len(chosen) * (2 if a.brute_force_step else 1)) if progress else None
+    branches, fates = continue_starts(base, [(n, s, p) for n, s, p in chosen], lam0, settings,
+                                      a.switch_depth, tick)
+    brute = []
+    if a.brute_force_step:
+        brute = sweeps(scene.system, values, scene.integrator, a.parameter,
+                       [(n, s) for n, s, _ in chosen], lam0, (a.low, a.high),
+                       a.brute_force_step)
+        if tick:
+            tick(len(chosen))
+    return continuation_dataset(base, branches, fates, brute, lam0, (a.low, a.high))
+
+
+def plan(scene, workers=None, chunk_size=None) -> str:
+    a = scene.analysis
+    what = "every catalogue solution" if a.start == "catalogue" and not a.branches else \
+        ", ".join(a.branches) if a.branches else \
+        f"the orbit reached from ({', '.join(f'{x:g}' for x in a.state)})"
+    brute = f"; brute force every {a.brute_force_step:g}" if a.brute_force_step else ""
+    return (f"continuation: {what} in {a.parameter} from {scene.values[a.parameter]:g} "
+            f"within [{a.low:g}, {a.high:g}], steps {a.min_step:g}..{a.max_step:g}, at most "
+            f"{a.max_points} points per direction, {a.switch_depth} period doublings "
+            f"deep{brute}")
+
+
+def summary(ds) -> dict:
+    from ..report.continuation import continuation_info
+
+    return continuation_info(ds)
+
+
+def report(ds) -> str:
+    from ..report.continuation import format_continuation
+
+    return format_continuation(ds)
+
+
+KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and unstable) "
+                      "followed in one parameter; folds, period doublings, Neimark-Sacker "
+                      "and grazing located", read, plan, sections=sections, shrink=shrink,
+                      run=run, summary=summary, report=report,
+                      info_after=lambda ds: report(ds).splitlines(),
+                      progress_unit="branches",
+                      plot=PlotSpec("Branches against the parameter (stable solid, unstable "
+                                    "dashed, bifurcations marked, brute-force points "
+                                    "overlaid) and their Floquet multipliers.")),)
