@@ -16,7 +16,8 @@ in the plain Euclidean norm of (y, lam). From a point u_k with unit tangent t_k
   ``min_step`` the branch ends ("step too small").
 
 A branch ends at the parameter bounds (the last point placed on the bound exactly, by
-Newton at fixed lam), after ``max_points`` points, or when the integration fails. The
+Newton at fixed lam), after ``max_points`` points, when it comes back to its first point
+(a closed loop, such as a bubble of period doublings), or when the integration fails. The
 Floquet multipliers (eigenvalues of M) are kept at every point; the test functions and
 the location of bifurcations are ``analysis/continuation_events.py``.
 """
@@ -196,6 +197,9 @@ def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 
             leg.end = f"parameter bound {edge:g}"
             return leg
         leg.points.append(accepted)
+        if len(leg.points) > 4 and np.linalg.norm(accepted.u - first.u) < h:
+            leg.end = "closed loop"  # back at the first point: a loop, traced once
+            return leg
         if on_point is not None:
             reason = on_point(leg)
             if reason:
