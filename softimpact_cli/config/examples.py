@@ -268,6 +268,31 @@ follow = true              # with [grid]: each value starts from the last one's 
 [output]
 path = "results/example_lyapunov.h5"
 """,
+    "continuation": """
+[system]
+model = "duffing"
+bodies = 1
+F = 1.0                    # the continued parameter starts at the scene's value
+
+[analysis]
+kind = "continuation"      # branches of periodic orbits, stable and unstable (seconds)
+parameter = "F"            # d, phi, k_c, c_c (a pair), F, w
+low = 0.2                  # followed within [low, high]
+high = 3.0
+start = "catalogue"        # every catalogue orbit; or "state" with state = [x, v]
+step = 0.05                # first arclength step; min_step, max_step bound it
+max_step = 0.3
+max_points = 400           # per direction
+switch_depth = 1           # period doublings switched onto (0: none)
+brute_force_step = 0.05    # sweeps up and down from each start, drawn beside (0: none)
+
+[catalogue]
+grid = 8
+random = 40
+
+[output]
+path = "results/example_continuation.h5"
+""",
 }
 
 
