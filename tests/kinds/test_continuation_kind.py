@@ -1,0 +1,74 @@
+"""The continuation kind end to end: scene errors name the key and file, a run writes a
+result whose info --json and figure hold the branches and bifurcations."""
+
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from softimpact_cli.cli import main
+from softimpact_cli.config import ConfigError, parse_scene
+
+SCENE = """
+[system]
+model = "duffing"
+bodies = 1
+F = 1.0
+
+[analysis]
+kind = "continuation"
+parameter = "F"
+low = 0.2
+high = 3.0
+start = "state"
+state = [-0.14, -1.9]
+step = 0.05
+max_step = 0.3
+{extra}
+
+[output]
+path = "{out}"
+"""
+
+
+@pytest.mark.parametrize("extra, message", [
+    ('parameter = "d"', "[analysis] parameter: must be one of 'F', 'w'"),
+    ("low = 1.5", "[analysis] low: the branch starts at the scene's F = 1.0"),
+    ("high = 0.1", "[analysis] high: must be > low"),
+    ("min_step = 0.1", "[analysis] step: must lie in [min_step, max_step]"),
+    ('branches = ["L1^1"]', "[analysis] branches: only with start = 'catalogue'"),
+])
+def test_bad_keys_are_one_line_naming_key_and_file(extra, message):
+    text = SCENE.format(extra="", out="r.h5").replace('parameter = "F"\nlow = 0.2\n'
+                                                        'high = 3.0\n', "")
+    key = extra.split(" = ")[0]
+    defaults = {"parameter": '"F"', "low": "0.2", "high": "3.0"}
+    lines = [f"{k} = {v}" for k, v in defaults.items() if k != key] + [extra]
+    text = text.replace('kind = "continuation"\n',
+                        'kind = "continuation"\n' + "\n".join(lines) + "\n")
+    with pytest.raises(ConfigError) as err:
+        parse_scene(text, "scene.toml")
+    assert str(err.value).startswith("scene.toml: ")
+    assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_a_run_writes_branches_and_folds_that_info_and_plot_show(tmp_path):
+    out = tmp_path / "fold.h5"
+    scene = tmp_path / "fold.toml"
+    scene.write_text(SCENE.format(extra="max_points = 200", out=out))
+    runner = CliRunner()
+    result = runner.invoke(main, ["sweep", str(scene)])
+    assert result.exit_code == 0, result.output
+    info = runner.invoke(main, ["info", str(out), "--json"])
+    data = json.loads(info.output)["continuation"]
+    assert [e["kind"] for e in data["bifurcations"]] == ["fold", "fold"]
+    assert sorted(e["parameter"] for e in data["bifurcations"]) == [
+        pytest.approx(0.6188944, abs=1e-6), pytest.approx(2.5655883, abs=1e-6)]
+    (branch,) = data["branches"]
+    assert [r["stable"] for r in branch["stability"]] == [True, False, True]
+    text = runner.invoke(main, ["info", str(out)]).output
+    assert "fold             F = 2.56558" in text
+    png = tmp_path / "fold.png"
+    plot = runner.invoke(main, ["plot", "continuation", str(out), "-o", str(png)])
+    assert plot.exit_code == 0, plot.output
+    assert png.stat().st_size > 10_000
