@@ -11,8 +11,9 @@ in the plain Euclidean norm of (y, lam). From a point u_k with unit tangent t_k
   unstable orbit between two folds is found);
 - step control: ``h`` grows by GROW after an easy correction (at most EASY Newton steps),
   shrinks by SHRINK after a hard one, and is halved and retried when Newton fails, when
-  the tangent turns by more than MAX_TURN radians or the state jumps by more than
-  ``max_step`` (what keeps the corrector from hopping onto a neighbouring branch); below
+  the tangent turns by more than MAX_TURN radians, the corrector moves the point by more
+  than MAX_CORRECTION times the step or the state jumps by more than ``max_step`` (what
+  keeps the corrector from hopping onto a neighbouring branch); below
   ``min_step`` the branch ends ("step too small").
 
 A branch ends at the parameter bounds (the last point placed on the bound exactly, by
@@ -33,6 +34,7 @@ from .shooting import MapValue, OrbitMap
 GROW, SHRINK, EASY, HARD = 1.5, 0.6, 3, 6
 MAX_TURN = 0.35  # radians between successive tangents
 MAX_NEWTON = 12
+MAX_CORRECTION = 0.5  # |corrected - predicted| per unit step: more is a hop to another branch
 
 
 @dataclass(frozen=True)
@@ -178,7 +180,9 @@ def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 
             t_new = tangent(value, here.tangent)
             turn = np.arccos(np.clip(t_new @ here.tangent, -1.0, 1.0))
             jump = float(np.max(np.abs(u - here.u)))
-            if turn <= MAX_TURN and jump <= max(settings.max_step, 2 * h):
+            moved = float(np.linalg.norm(u - here.u - h * here.tangent))
+            if turn <= MAX_TURN and jump <= max(settings.max_step, 2 * h) and \
+                    moved <= MAX_CORRECTION * h:
                 accepted = Point(u, value, t_new, h, k)
         if accepted is None:
             h *= 0.5

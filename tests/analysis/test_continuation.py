@@ -180,3 +180,49 @@ def test_grazing_points_along_d_are_the_critical_distances():
     assert grazings[0].point.parameter == pytest.approx(d_crit["L1^2 R1-0^2"], abs=1e-8)
     after = [p for p in branch.points if p.parameter < grazings[0].point.parameter]
     assert after and all(p.impacting for p in after)
+
+
+UEDA = {**BODY.defaults(), "c": 0.05, "k1": 0.0, "k2": 1.0, "F": 5.0, "w": 1.0}
+UEDA_P2 = np.array([0.79271067, 0.73734594])  # its period-2 orbit at F = 5 (t = 0)
+
+
+def _period_four_split(F: float, y: np.ndarray) -> tuple[float, np.ndarray]:
+    """Brute force: iterate P^4 from y until it settles (1e-12), return the distance of
+    x between the orbit's points two periods apart (0 on a period-2 orbit) and the end."""
+    problem = Problem(BODY, {**UEDA, "F": F}, SHOOTING)
+    T = problem.period
+    for _ in range(5000):
+        y4 = flow(problem, y, 0.0, 4 * T)[1]
+        if np.max(np.abs(y4 - y)) < 1e-12:
+            break
+        y = y4
+    return abs(flow(problem, y, 0.0, 2 * T)[1][0] - y[0]), y
+
+
+def test_period_doubling_cascade_of_ueda_matches_a_brute_force_estimate():
+    """Ueda's oscillator x'' + 0.05 x' + x^3 = F sin t: its period-2 orbit doubles to
+    period 4 and the period-4 one to period 8 as F rises. The brute-force estimate: the
+    split s of the period-4 orbit found by plain iteration (no Newton, no monodromy) at
+    five F beyond the doubling, s^2 = a (F - F_PD) + b (F - F_PD)^2 fitted and solved."""
+    base = OrbitMap(BODY, UEDA, "F", 1)
+    settings = Settings((5.0, 5.4), step=0.02, max_step=0.05)
+    branches, _ = continue_starts(base, [("P2", UEDA_P2, 2)], 5.0, settings, switch_depth=2)
+    period_two = branches[0]
+    (pd,) = [e for e in period_two.events if e.kind == "period doubling"]
+    assert np.min(np.abs(pd.point.multipliers + 1.0)) < 1e-8
+    fourth = [b for b in branches if b.periods == 4]
+    eighth = [b for b in branches if b.periods == 8]
+    assert fourth and eighth  # the cascade: 2 -> 4 -> 8, each switched onto
+    (pd4,) = [e for e in fourth[0].events if e.kind == "period doubling"]
+    assert pd.point.parameter < pd4.point.parameter < 5.4
+    lam = pd.point.parameter
+    offsets = np.array([0.01, 0.008, 0.006, 0.004, 0.002])
+    y, squares = pd.point.state + 0.01, []
+    for delta in offsets:  # from far to near: each from the last end state
+        s, y = _period_four_split(lam + delta, y)
+        squares.append(s ** 2)
+    fit = np.polyfit(offsets, squares, 2)  # in delta = F - F_PD(continuation)
+    roots = np.roots(fit).real
+    estimate = lam + roots[np.argmin(np.abs(roots))]
+    assert abs(estimate - lam) < 1e-6
+    assert squares[-1] > 1e-4  # a genuine period-4 orbit, not the period-2 one
