@@ -13,7 +13,8 @@ in the plain Euclidean norm of (y, lam). From a point u_k with unit tangent t_k
   shrinks by SHRINK after a hard one, and is halved and retried when Newton fails, when
   the tangent turns by more than MAX_TURN radians, the corrector moves the point by more
   than MAX_CORRECTION times the step or the state jumps by more than ``max_step`` (what
-  keeps the corrector from hopping onto a neighbouring branch); below
+  keeps the corrector from hopping onto a neighbouring branch), or when the branch turned
+  back in the parameter with no multiplier through +1 (two folds in one step); below
   ``min_step`` the branch ends ("step too small").
 
 A branch ends at the parameter bounds (the last point placed on the bound exactly, by
@@ -34,6 +35,7 @@ from .shooting import MapValue, OrbitMap
 GROW, SHRINK, EASY, HARD = 1.5, 0.6, 3, 6
 MAX_TURN = 0.35  # radians between successive tangents
 MAX_NEWTON = 12
+RESOLVE = 100  # a silent turn is resolved down to RESOLVE * min_step
 MAX_CORRECTION = 0.5  # |corrected - predicted| per unit step: more is a hop to another branch
 
 
@@ -184,6 +186,8 @@ def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 
             if turn <= MAX_TURN and jump <= max(settings.max_step, 2 * h) and \
                     moved <= MAX_CORRECTION * h:
                 accepted = Point(u, value, t_new, h, k)
+                if silent_turn(here, accepted) and h > RESOLVE * settings.min_step:
+                    accepted = None  # two folds within one step: resolve them
         if accepted is None:
             h *= 0.5
             if h < settings.min_step:
@@ -213,6 +217,18 @@ def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 
             h * SHRINK if accepted.newton >= HARD else h
     leg.end = "max points"
     return leg
+
+
+def silent_turn(left: Point, right: Point) -> bool:
+    """Whether the branch turned back in the parameter between two points while
+    det(M - I) kept its sign: an odd number of folds must lie between them, so a single
+    turn with no multiplier through +1 means at least two folds (a narrow S near a cusp)
+    or a jump: the step is cut until they are resolved."""
+    def fold_test(point: Point) -> float:
+        return float(np.prod(point.multipliers - 1.0).real)
+
+    turned = left.tangent[-1] * right.tangent[-1] < 0
+    return bool(turned and fold_test(left) * fold_test(right) > 0)
 
 
 def bound_point(orbit_map: OrbitMap, before: Point, after: Point, edge: float, tol: float

@@ -9,6 +9,11 @@ With the Floquet multipliers mu_i of a point (eigenvalues of the monodromy M, n 
 - Neimark-Sacker: ``psi_NS = Re prod_{i<j} (mu_i mu_j - 1)`` (the bialternate product's
   determinant); zero when a complex pair crosses the unit circle, but also at a "neutral
   saddle" (two real multipliers with product 1), which is not reported;
+- a turn of the branch in the parameter, ``t_lam`` (the tangent's parameter component),
+  where the fold test kept its sign: on a branch of period p, the point where it meets
+  the orbit of period p/2 it doubled from ("doubling origin": seen on P^p, the doubling
+  is a pitchfork and det(P^p' - I) touches zero without changing sign), else two folds
+  within one step;
 - grazing (a pair): ``psi_G = max over the orbit of (x1 - x2) - d``, the orbit touching
   the stop. Signs are compared on the kernels' located maximum; the zero is located on
   the maximum refined by ``critical_distance.locate_maximum`` (root of v1 - v2 on the
@@ -33,13 +38,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .continuation import Point, correct, tangent
+from .continuation import Point, correct, start_point, tangent
 from .critical_distance import critical_distance
 from .shooting import OrbitMap
 
-EVENT_KINDS = ("fold", "branch point", "period doubling", "Neimark-Sacker", "grazing")
+EVENT_KINDS = ("fold", "branch point", "period doubling", "Neimark-Sacker", "grazing",
+               "doubling origin")
+HALF_PERIOD_TOL = 1e-3  # a half-period orbit this near (relative) a turn: its origin
 LOCATE_TOL = 1e-12  # bracket in arclength
 MAX_BISECTIONS = 80
+SWITCH_STEPS = (1.0, 0.5, 0.25, 2.0)  # predictor steps tried onto a doubled branch
 COMPLEX_TOL = 1e-7  # |Im mu| above this: a complex pair (Neimark-Sacker, not neutral saddle)
 
 
@@ -80,12 +88,14 @@ def test_values(orbit_map: OrbitMap, point: Point) -> np.ndarray:
 def _test(orbit_map: OrbitMap, point: Point, which: int) -> float:
     if which == 3:
         return gap(orbit_map, point, precise=True)
+    if which == 4:
+        return float(point.tangent[-1])
     return float(multiplier_tests(point.multipliers)[which])
 
 
 def locate(orbit_map: OrbitMap, left: Point, right: Point, which: int, tol: float
            ) -> Point | None:
-    """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing) between two
+    """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing, 4 turn) between two
     consecutive points of a leg (``right`` = the step ``right.step`` from ``left``)."""
     a, b = 0.0, right.step
     fa, fb = _test(orbit_map, left, which), _test(orbit_map, right, which)
@@ -121,10 +131,28 @@ def locate(orbit_map: OrbitMap, left: Point, right: Point, which: int, tol: floa
     return best
 
 
-def classify(which: int, left: Point, right: Point, located: Point) -> str | None:
-    """The event's name, or None when the sign change is no bifurcation of that kind."""
-    if which == 0:
-        return "fold" if left.tangent[-1] * right.tangent[-1] < 0 else "branch point"
+def half_period(orbit_map: OrbitMap, point: Point, tol: float) -> Point | None:
+    """The orbit of half the branch's period p at the point's parameter, when Newton at
+    fixed parameter from the point finds one within HALF_PERIOD_TOL (relative): where a
+    period-p branch meets the orbit it doubled from. None otherwise (or p odd). Near that
+    meeting the tangent is ill-conditioned (two branches cross), so the turn is located
+    only roughly and the half-period orbit is solved for instead."""
+    p = orbit_map.periods
+    if p % 2:
+        return None
+    found = start_point(orbit_map.with_periods(p // 2), point.state, point.parameter, tol)
+    if found is None:
+        return None
+    scale = max(1.0, float(np.max(np.abs(point.state))))
+    if float(np.max(np.abs(found.state - point.state))) > HALF_PERIOD_TOL * scale:
+        return None
+    value = orbit_map.evaluate(found.state, found.parameter)  # as a fixed point of P^p
+    return Point(found.u, value, point.tangent, point.step, found.newton)
+
+
+def classify(which: int, located: Point) -> str | None:
+    """The name of a sign change of test function ``which`` (1 PD, 2 NS, 3 grazing), or
+    None when it is no bifurcation of that kind (an NS test zero at a neutral saddle)."""
     if which == 1:
         return "period doubling"
     if which == 2:
@@ -137,11 +165,33 @@ def classify(which: int, left: Point, right: Point, located: Point) -> str | Non
     return "grazing"
 
 
+def turn_events(orbit_map: OrbitMap, left: Point, right: Point, fold_sign_changed: bool,
+                tol: float) -> list[Event]:
+    """The events of a +1 multiplier between two points. The branch turned back in the
+    parameter: at the turn (t_lam = 0) the orbit may have half the branch's period (a
+    doubling origin), else it is a fold, located on psi_LP when that changed sign (a
+    multiplier through +1) and on the turn otherwise (two folds within the step). No
+    turn but psi_LP changed sign: a branch point."""
+    turned = left.tangent[-1] * right.tangent[-1] < 0
+    if turned:
+        turn = locate(orbit_map, left, right, 4, tol)
+        origin = None if turn is None else half_period(orbit_map, turn, tol)
+        if origin is not None:
+            return [Event("doubling origin", origin, -1)]
+        at = locate(orbit_map, left, right, 0, tol) if fold_sign_changed else turn
+        return [] if at is None else [Event("fold", at, -1)]
+    if fold_sign_changed:
+        at = locate(orbit_map, left, right, 0, tol)
+        return [] if at is None else [Event("branch point", at, -1)]
+    return []
+
+
 def detect(orbit_map: OrbitMap, left: Point, right: Point, tol: float) -> list[Event]:
     """Every event between two consecutive points, located, in the order of arclength."""
     before, after = test_values(orbit_map, left), test_values(orbit_map, right)
-    events = []
-    for which in range(4):
+    events = turn_events(orbit_map, left, right, np.sign(before[0]) * np.sign(after[0]) < 0,
+                         tol)
+    for which in (1, 2, 3):
         if not (np.isfinite(before[which]) and np.isfinite(after[which])):
             continue
         if which == 3:
@@ -153,7 +203,7 @@ def detect(orbit_map: OrbitMap, left: Point, right: Point, tol: float) -> list[E
         located = locate(orbit_map, left, right, which, tol)
         if located is None:
             continue
-        kind = classify(which, left, right, located)
+        kind = classify(which, located)
         if kind is not None:
             events.append(Event(kind, located, -1))
     events.sort(key=lambda e: e.point.step)
@@ -174,15 +224,17 @@ def doubled_direction(point: Point) -> np.ndarray:
 
 def switch_to_doubled(orbit_map: OrbitMap, point: Point, step: float, tol: float
                       ) -> Point | None:
-    """The first point of the doubled branch (a fixed point of P^(2p)) at arclength
-    ``step`` from a located period doubling, its tangent set; None when Newton fails."""
+    """The first point of the doubled branch (a fixed point of P^(2p)) at arclength about
+    ``step`` from a located period doubling, its tangent set; None when Newton fails or
+    falls back onto the old branch for the steps ``step * SWITCH_STEPS``."""
     doubled = orbit_map.with_periods(2 * orbit_map.periods)
     direction = doubled_direction(point)
-    found = correct(doubled, point.u + step * direction, direction, tol)
-    if found is None:
-        return None
-    u, value, k = found
-    status, image, _ = orbit_map.image(u[:-1], u[-1])
-    if status != 0 or np.max(np.abs(image - u[:-1])) < 0.1 * step:  # fell onto the old one
-        return None
-    return Point(u, value, tangent(value, direction), step, k)
+    for h in step * np.array(SWITCH_STEPS):
+        found = correct(doubled, point.u + h * direction, direction, tol)
+        if found is None:
+            continue
+        u, value, k = found
+        status, image, _ = orbit_map.image(u[:-1], u[-1])
+        if status == 0 and np.max(np.abs(image - u[:-1])) >= 0.1 * h:  # not the old orbit
+            return Point(u, value, tangent(value, direction), h, k)
+    return None

@@ -15,9 +15,9 @@ from . import PARAMETER_TEX, parameter_text, place_panels, root_figure
 
 COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange", "tab:brown")
 MARKERS = {"fold": "o", "branch point": "D", "period doubling": "s",
-           "Neimark-Sacker": "^", "grazing": "v"}
+           "Neimark-Sacker": "^", "grazing": "v", "doubling origin": "P"}
 SHORT = {"fold": "LP", "branch point": "BP", "period doubling": "PD",
-         "Neimark-Sacker": "NS", "grazing": "G"}
+         "Neimark-Sacker": "NS", "grazing": "G", "doubling origin": "PD0"}
 
 
 def _runs(mask: np.ndarray):

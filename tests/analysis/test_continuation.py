@@ -200,14 +200,23 @@ def _period_four_split(F: float, y: np.ndarray) -> tuple[float, np.ndarray]:
 
 
 def test_period_doubling_cascade_of_ueda_matches_a_brute_force_estimate():
-    """Ueda's oscillator x'' + 0.05 x' + x^3 = F sin t: its period-2 orbit doubles to
-    period 4 and the period-4 one to period 8 as F rises. The brute-force estimate: the
-    split s of the period-4 orbit found by plain iteration (no Newton, no monodromy) at
-    five F beyond the doubling, s^2 = a (F - F_PD) + b (F - F_PD)^2 fitted and solved."""
+    """Ueda's oscillator x'' + 0.05 x' + x^3 = F sin t: a period-1 orbit doubles to the
+    period-2 one, which doubles to period 4, and that one to period 8 as F rises. The
+    brute-force estimate of the second doubling: the split s of the period-4 orbit found
+    by plain iteration (no Newton, no monodromy) at five F beyond the doubling,
+    s^2 = a (F - F_PD) + b (F - F_PD)^2 fitted and solved."""
     base = OrbitMap(BODY, UEDA, "F", 1)
-    settings = Settings((5.0, 5.4), step=0.02, max_step=0.05)
+    settings = Settings((4.7, 5.4), step=0.02, max_step=0.05)
     branches, _ = continue_starts(base, [("P2", UEDA_P2, 2)], 5.0, settings, switch_depth=2)
     period_two = branches[0]
+    # going down, the period-2 branch ends on the period-1 orbit it doubled from, whose
+    # multiplier is -1 there (the pitchfork of P^2 seen from the doubled branch)
+    assert period_two.ends[0] == "meets the orbit it doubled from"
+    (origin,) = [e for e in period_two.events if e.kind == "doubling origin"]
+    assert origin.point.parameter == pytest.approx(4.7551195, abs=1e-6)
+    mother = base.evaluate(origin.point.state, origin.point.parameter)
+    assert np.max(np.abs(mother.residual)) < 1e-9  # a fixed point of P itself
+    assert np.min(np.abs(np.linalg.eigvals(mother.monodromy) + 1.0)) < 1e-5
     (pd,) = [e for e in period_two.events if e.kind == "period doubling"]
     assert np.min(np.abs(pd.point.multipliers + 1.0)) < 1e-8
     fourth = [b for b in branches if b.periods == 4]
