@@ -123,7 +123,7 @@ def starts(scene) -> list[tuple[str, object, int]]:
             raise ConfigError(f"{scene.source}: [analysis] state: the trajectory from it does "
                               f"not converge to a periodic orbit ({cls.outcome}); start "
                               f"closer to one or use start = 'catalogue'")
-        return [(f"orbit from state (period {cls.period})", cls.orbit[-1], cls.period)]
+        return [("orbit from state", cls.orbit[-1], cls.period)]
     from ..analysis.catalogue import scene_catalogue
 
     cat = scene_catalogue(scene)

@@ -90,7 +90,7 @@ def draw_continuation(ds, ax=None):
     panels[-1].set_yscale("log")
     panels[-1].set_xlabel(f"${PARAMETER_TEX.get(name, name)}$")
     marks = ", ".join(f"{SHORT[k]} {k}" for k in MARKERS)
-    root_figure(fig).suptitle(f"Continuation in ${PARAMETER_TEX.get(name, name)}$ "
-                              f"(stable solid, unstable dashed; {marks})\n"
-                              f"{parameter_text(ds, exclude=(name,))}", fontsize=9)
+    root_figure(fig).suptitle(f"Continuation in ${PARAMETER_TEX.get(name, name)}$: stable "
+                              f"solid, unstable dashed, impacting thick\n{marks}\n"
+                              f"{parameter_text(ds, exclude=(name,))}", fontsize=8)
     return root_figure(fig)
