@@ -153,6 +153,10 @@ def run(scene, progress=None, **_):
     tick = progress(len(chosen) * (2 if a.brute_force_step else 1)) if progress else None
     branches, fates = continue_starts(base, [(n, s, p) for n, s, p in chosen], lam0, settings,
                                       a.switch_depth, tick)
+    if not branches:
+        raise ConfigError(f"{scene.source}: [analysis] start: Newton shooting converged at no "
+                          f"start ({', '.join(fates)}); loosen tolerance (now "
+                          f"{a.tolerance:g}) or start from another orbit")
     brute = []
     if a.brute_force_step:
         brute = sweeps(scene.system, values, scene.integrator, a.parameter,

@@ -235,3 +235,20 @@ def test_period_doubling_cascade_of_ueda_matches_a_brute_force_estimate():
     estimate = lam + roots[np.argmin(np.abs(roots))]
     assert abs(estimate - lam) < 1e-6
     assert squares[-1] > 1e-4  # a genuine period-4 orbit, not the period-2 one
+
+
+def test_test_functions_vanish_exactly_where_their_multipliers_say():
+    from softimpact_cli.analysis.continuation_events import multiplier_tests
+
+    theta = 0.7
+    fold, pd, ns = multiplier_tests(np.array([1.0, 0.5]))
+    assert fold == 0.0 and pd == pytest.approx(3.0) and ns == pytest.approx(-0.5)
+    assert multiplier_tests(np.array([-1.0, 0.3]))[1] == 0.0
+    on_circle = np.array([np.exp(1j * theta), np.exp(-1j * theta), 0.5, 0.2])
+    assert abs(multiplier_tests(on_circle)[2]) < 1e-15  # a complex pair on |mu| = 1
+    inside = np.array([0.9 * np.exp(1j * theta), 0.9 * np.exp(-1j * theta), 0.5, 0.2])
+    outside = np.array([1.1 * np.exp(1j * theta), 1.1 * np.exp(-1j * theta), 0.5, 0.2])
+    assert multiplier_tests(inside)[2] * multiplier_tests(outside)[2] < 0
+    # fold and period-doubling tests keep their sign while the pair crosses the circle
+    assert multiplier_tests(inside)[0] * multiplier_tests(outside)[0] > 0
+    assert multiplier_tests(inside)[1] * multiplier_tests(outside)[1] > 0

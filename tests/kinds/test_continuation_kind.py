@@ -72,3 +72,14 @@ def test_a_run_writes_branches_and_folds_that_info_and_plot_show(tmp_path):
     plot = runner.invoke(main, ["plot", "continuation", str(out), "-o", str(png)])
     assert plot.exit_code == 0, plot.output
     assert png.stat().st_size > 10_000
+
+
+def test_no_start_converging_is_one_line_and_writes_nothing(tmp_path):
+    out = tmp_path / "none.h5"
+    scene = tmp_path / "none.toml"
+    scene.write_text(SCENE.format(extra="tolerance = 1e-30", out=out))
+    result = CliRunner().invoke(main, ["sweep", str(scene)])
+    assert result.exit_code == 2
+    line = result.output.strip().splitlines()[-1]
+    assert "[analysis] start: Newton shooting converged at no start" in line
+    assert not out.exists()
