@@ -252,3 +252,21 @@ def test_test_functions_vanish_exactly_where_their_multipliers_say():
     # fold and period-doubling tests keep their sign while the pair crosses the circle
     assert multiplier_tests(inside)[0] * multiplier_tests(outside)[0] > 0
     assert multiplier_tests(inside)[1] * multiplier_tests(outside)[1] > 0
+
+
+def test_folds_of_the_frequency_response_agree_with_harmonic_balance():
+    """Continued in w (the stroboscopic period 2 pi / w moves with it) at F = 1: the
+    resonance curve bends over and folds twice; one-harmonic balance puts the folds
+    where w(A) from (k1 - w^2 + 3/4 k2 A^2)^2 + (c w)^2 = F^2 / A^2 turns."""
+    base = OrbitMap(BODY, VALUES, "w", 1)
+    settings = Settings((0.8, 2.0), step=0.05, max_step=0.3)
+    (branch,), _ = continue_starts(base, [("small", SMALL, 1)], 1.3, settings)
+    folds = sorted(e.point.parameter for e in branch.events if e.kind == "fold")
+    c, k1, F, b = 0.05, 1.0, 1.0, 0.75 * 0.01
+    A = np.linspace(0.5, 20.0, 200_001)
+    p = k1 + b * A ** 2  # W = w^2 solves W^2 - (2p - c^2) W + p^2 - F^2/A^2 = 0
+    disc = (2 * p - c ** 2) ** 2 - 4 * (p ** 2 - F ** 2 / A ** 2)
+    w = np.sqrt(((2 * p - c ** 2) + np.sqrt(np.clip(disc, 0, None))) / 2)[disc >= 0]
+    turns = np.flatnonzero(np.diff(np.sign(np.diff(w))) != 0) + 1
+    assert len(folds) == 2 and len(turns) == 2
+    assert folds == pytest.approx(sorted(w[turns]), rel=0.01)
