@@ -178,13 +178,16 @@ $(LYAPUNOV): $(STAMP)
 
 # Continuation (README: "Continuation of periodic orbits"): the single Duffing body's
 # hysteresis loop in F (two folds, the saddle dashed, brute-force sweeps up and down),
-# figure 7 as branches in d (grazing at the critical distances, impacting orbits, folds)
-# and Ueda's period-doubling cascade in F. About 10 s, a minute and 30 s.
-CONTINUATION := continuation-duffing-fold continuation-fig07 continuation-ueda
+# figure 7 as branches in d (grazing at the critical distances, impacting orbits, folds),
+# Ueda's period-doubling cascade in F, and figure 14(c)'s impacting orbit in c_c (its
+# subcritical Neimark-Sacker point). About 10 s, a minute, 30 s and 15 s.
+CONTINUATION := continuation-duffing-fold continuation-fig07 continuation-ueda \
+	continuation-fig14c-ns
 continuation: $(CONTINUATION)
 continuation-duffing-fold: configs/continuation/duffing_fold_F.toml
 continuation-fig07: configs/continuation/fig07_duffing_continuation.toml
 continuation-ueda: configs/continuation/ueda_period_doubling_F.toml
+continuation-fig14c-ns: configs/continuation/fig14c_neimark_sacker_c_c.toml
 $(CONTINUATION): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) plot continuation results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
@@ -285,7 +288,7 @@ help:
 	@echo "  fig15b map-d-phi  one figure each (results/<target>.{h5,png}; QUICK=1 works too)"
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
 	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
-	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda"
+	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda, fig. 14(c) NS"
 	@echo "  reproduce         the study's 89 statements checked -> results/reproduce.md (QUICK=1)"
 	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"
 	@echo "  clean             remove .venv and caches"
