@@ -165,3 +165,58 @@ def boundary_dimension(label: np.ndarray) -> float:
 def row_shares(label: np.ndarray, code: int) -> np.ndarray:
     """Share of each row (fixed second-axis value... i.e. fixed velocity) reaching ``code``."""
     return (label == code).mean(axis=1)
+
+
+def stable_impacting_leg(ds, name: str) -> dict:
+    """Where branch ``name`` of a continuation result is a stable impacting orbit after it
+    grazes, followed from its start in the direction of the falling parameter: the stable
+    non-impacting points first, then the stable impacting run that follows them.
+
+    Returns {"grazing": parameter of the grazing event that opens the run, "low", "high":
+    the run's parameter range, "fold": the fold event that closes it (NaN: the run ends
+    otherwise), "end": what ends it ("fold", "unstable", "not impacting" or the branch's
+    end), "parameter", "modulus": (k,) the run's parameter values (rising) and largest
+    |multiplier| there}. A branch with no such run has NaN everywhere and empty arrays.
+    """
+    names = [str(n) for n in ds["branch_name"].values]
+    b = names.index(name)
+    first, size = int(ds["branch_first"].values[b]), int(ds["branch_size"].values[b])
+    start = int(ds["branch_start"].values[b]) - first
+    lam = ds["parameter"].values[first:first + size]
+    stable = ds["stable"].values[first:first + size].astype(bool)
+    impacting = ds["impacting"].values[first:first + size].astype(bool)
+    mu = ds["multiplier_re"].values[first:first + size] + \
+        1j * ds["multiplier_im"].values[first:first + size]
+    modulus = np.max(np.abs(mu), axis=1)
+    down = -1 if start > 0 and (start == size - 1 or lam[start - 1] < lam[start]) else 1
+    k = start
+    while 0 <= k + down < size and stable[k] and not impacting[k]:
+        k += down
+    run = []
+    while 0 <= k < size and stable[k] and impacting[k]:
+        run.append(k)
+        k += down
+    events = [(str(kind), float(p)) for kind, br, p in zip(
+        ds["event_kind"].values, ds["event_branch"].values, ds["event_parameter"].values,
+        strict=True) if int(br) == b]
+    nan = float("nan")
+    if not run:
+        return {"grazing": nan, "low": nan, "high": nan, "fold": nan, "end": "no run",
+                "parameter": np.array([]), "modulus": np.array([])}
+    lo, hi = float(lam[run].min()), float(lam[run].max())
+    step = float(np.max(np.abs(np.diff(lam)))) if size > 1 else 0.0
+
+    def nearest(kind: str, value: float) -> float:
+        near = [p for e, p in events if e == kind and abs(p - value) <= step]
+        return min(near, key=lambda p: abs(p - value)) if near else nan
+
+    fold = nearest("fold", lo)
+    if np.isfinite(fold):
+        end = "fold"
+    elif not 0 <= k < size:
+        end = str(ds["branch_end_low" if down < 0 else "branch_end_high"].values[b])
+    else:
+        end = "unstable" if not stable[k] else "not impacting"
+    order = np.argsort(lam[run])
+    return {"grazing": nearest("grazing", hi), "low": lo, "high": hi, "fold": fold,
+            "end": end, "parameter": lam[run][order], "modulus": modulus[run][order]}

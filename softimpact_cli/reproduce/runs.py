@@ -190,6 +190,9 @@ RUN_LIST = (
     Run("fig07", "figures/fig07_duffing_bifurcation.toml"),
     Run("fig07_step005", "figures/fig07_duffing_bifurcation.toml",
         (("analysis", "step", 0.05),), "d stepped by 0.05"),
+    Run("fig07_continuation", "continuation/fig07_duffing_continuation.toml",
+        note="figure 7's solutions continued in d: grazing, stable and unstable impacting "
+        "orbits, folds"),
     Run("fig14c_t0", "figures/fig14c_t0_stability.toml"),
     Run("fig14d_t0", "figures/fig14c_t0_stability.toml", (("coupling", "c_c", 2.0),),
         "figure 14(d): c_c = 2"),

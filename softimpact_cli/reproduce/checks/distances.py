@@ -7,7 +7,7 @@ import math  # noqa: F401
 import numpy as np
 
 from .. import measures as M
-from ..verdicts import Measure
+from ..verdicts import Measure, agrees
 from . import PI, _names, check
 
 # ------------------------------------------------------------------ critical distances
@@ -204,8 +204,40 @@ def _grid_reading(runs, name: str, what: str) -> list[Measure]:
 def _destroyed(st, runs, name: str) -> Measure:
     b = _branch(runs, name)
     m = Measure(b["destroyed_at"], f"{b['destroyed_at']:.3f} (grazing located by bisection; "
-                f"then {b['falls_to']})", ("fig07",), tolerance=1e-3)
+                f"then {b['falls_to']})", ("fig07", "fig07_continuation"), tolerance=1e-3)
+    graze = M.stable_impacting_leg(runs("fig07_continuation"), name)["grazing"]
+    m.note = (f"the continuation of the branch (run fig07_continuation) grazes at "
+              f"{graze:.6f}, {abs(graze - b['destroyed_at']):.0e} from the bisection")
     m.alternatives = _grid_reading(runs, name, "destroyed")
+    return m
+
+
+CONTINUED = "the end of the stable impacting branch by continuation (its fold)"
+
+
+def _continuation_end(st, runs, name: str) -> Measure:
+    """Where the stable impacting orbit born at the grazing ends when it is continued
+    (run fig07_continuation): its fold (a multiplier through +1), and whether the study's
+    value can be that end (the orbit is stable there: it cannot, unless the study's value
+    is the fold within its precision)."""
+    leg = M.stable_impacting_leg(runs("fig07_continuation"), name)
+    study, precision = float(st["study"]), float(st.get("precision", 0.0))
+    ends_in_fold = bool(np.isfinite(leg["fold"]))
+    value = leg["fold"] if ends_in_fold else leg["low"]
+    what = ("fold, multiplier +1" if ends_in_fold else
+            f"no fold: still stable and impacting at the continuation's end ({leg['end']})")
+    m = Measure(value, "", ("fig07_continuation",), tolerance=1e-4, label=CONTINUED)
+    if agrees("value", study, precision, m):
+        verdict = f"the study's {study:g} is that end within its precision"
+    elif value <= study <= leg["high"]:
+        at = float(np.interp(study, leg["parameter"], leg["modulus"]))
+        verdict = (f"at the study's d = {study:g} the impacting orbit is stable (largest "
+                   f"|mu| {at:.3f}): the stable branch does not end there")
+    else:
+        verdict = (f"the study's d = {study:g} is outside the stable impacting range "
+                   f"{value:.4f}-{leg['high']:.4f}")
+    m.shown = (f"{value:.4f} ({what}; stable and impacting from the grazing at "
+               f"{leg['grazing']:.6f} down to it; {verdict})")
     return m
 
 
@@ -217,6 +249,13 @@ def _impacting_end(st, runs, name: str) -> Measure:
                 tolerance=0.1)
     m.note = "softimpact's range ends are the d grid's (step 0.1): tolerance 0.1"
     m.alternatives = _grid_reading(runs, name, "falls")
+    continued = _continuation_end(st, runs, name)
+    m.alternatives.append(continued)
+    if agrees("value", st["study"], float(st.get("precision", 0.0)), m):
+        said = "agrees" if agrees("value", st["study"], float(st.get("precision", 0.0)),
+                                  continued) else "does not agree"
+        m.note += (f"; {continued.label}: {continued.shown} ({said}; run "
+                   f"fig07_continuation)")  # a reproduced row shows its note only
     return m
 
 
@@ -294,8 +333,16 @@ def fig07_transients(st, runs):
         parts.append(f"{n}: impacting {lo:.2f}-{hi:.2f}, then "
                      f"{v['falls_to'] or 'still impacting at the end'}")
         ok &= ends
-    return Measure(ok, "; ".join(parts), ("fig07",), note="the last solution, L1^1 R1-0^1, "
-                   "can only fall to an impacting one (S35)")
+    ds = runs("fig07_continuation")
+    legs = {n: M.stable_impacting_leg(ds, n) for n in b}
+    continued = "; ".join(
+        f"{n}: stable impacting {leg['high']:.4f}-{leg['low']:.4f}, "
+        + (f"ends in a fold at {leg['fold']:.4f}" if np.isfinite(leg["fold"]) else
+           f"still stable at the continuation's end ({leg['end']})")
+        for n, leg in legs.items())
+    return Measure(ok, "; ".join(parts), ("fig07", "fig07_continuation"),
+                   note="the last solution, L1^1 R1-0^1, can only fall to an impacting one "
+                   f"(S35); continued in d (run fig07_continuation): {continued}")
 
 
 @check("fig07_settles_nonimpacting")
