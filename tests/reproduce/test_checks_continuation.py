@@ -32,3 +32,23 @@ def test_a_study_value_at_the_fold_within_its_precision_agrees():
     below = _continuation_end({"rule": "value", "study": 15.0, "precision": 0.005}, runs,
                               "A")
     assert "outside the stable impacting range 15.4900-16.5000" in below.shown
+
+
+def test_without_the_continuation_run_a_difference_waits_for_it(monkeypatch):
+    """--cached-only with fig07_continuation not made: a differing impacting end is 'not
+    checked yet' naming the run; the grazing cross-check is left out."""
+    from softimpact_cli.reproduce.checks import distances
+    from softimpact_cli.reproduce.runs import MissingRun
+
+    def no_continuation(name):
+        raise MissingRun(name)
+
+    monkeypatch.setattr(distances, "_grid_reading", lambda runs, name, what: [])
+    monkeypatch.setattr(distances, "_branch", lambda runs, name, run="fig07": {
+        "impacting_range": [15.5, 16.5], "falls_to": "B", "destroyed_at": 16.549})
+    st = {"rule": "value", "study": 15.96, "precision": 0.005}
+    m = distances._impacting_end(st, no_continuation, "A")
+    assert m.pending == ["fig07_continuation"]
+    assert verdict(st, m)[0].startswith("not checked yet: differs")
+    d = distances._destroyed({"rule": "value", "study": 16.5}, no_continuation, "A")
+    assert d.runs == ("fig07",) and "continuation" not in d.note
