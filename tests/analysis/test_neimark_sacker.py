@@ -12,6 +12,9 @@ of the stroboscopic map (no variational equations, no Newton) must show:
   sqrt(c_NS - c_c); the perturbation grows until the trajectory lands on a distant torus
   (largest Lyapunov exponent 0) of the same size however close to c_NS, which also
   persists above c_NS beside the stable fixed point (hysteresis) and is gone further up.
+
+The same orbit continued in d at c_c = 4.3 regains its stability at a supercritical NS
+point (d = 9.040184), where the invariant curve grows like the square root (last test).
 """
 
 from __future__ import annotations
@@ -135,3 +138,71 @@ def test_it_is_subcritical_past_it_the_pair_lands_on_a_large_torus_with_hysteres
         points = section_points(c_ns + above, torus, 4000)
         distance = np.linalg.norm(points[-500:] - y, axis=1)
         assert (distance.min() > 0.5) if stays else (distance.max() < 1e-6), above
+
+
+def curve_size_and_rotation(points: np.ndarray, centre: np.ndarray) -> tuple[float, float]:
+    """(largest distance of the section points from the fixed point ``centre``; rotation
+    number in turns per period: the mean turn per period of the points about their mean,
+    in the plane of their two principal directions)."""
+    dev = points - centre
+    xy = dev @ np.linalg.svd(dev, full_matrices=False)[2][:2].T
+    xy -= xy.mean(axis=0)
+    turns = np.unwrap(np.arctan2(xy[:, 1], xy[:, 0]))
+    rotation = abs(turns[-1] - turns[0]) / (2 * np.pi * (len(turns) - 1))
+    return float(np.max(np.linalg.norm(dev, axis=1))), float(rotation)
+
+
+@pytest.mark.slow
+def test_a_supercritical_neimark_sacker_point_in_d_grows_a_sqrt_invariant_curve():
+    """The same orbit at c_c = 4.3 followed down in d from 10.5: it loses stability at a
+    subcritical NS point (d = 10.2994) and regains it at d_NS = 9.040184 in a narrow window
+    down to its grazing at 9.0318. That NS point is supercritical: 0.004 below it the pair
+    converges to the fixed point; 0.0005-0.004 above it the section points settle on a
+    closed invariant curve whose size grows like sqrt(d - d_NS) (log-log slope 0.5 +- 0.06,
+    size^2 linear in d with its zero 2e-4 from d_NS), turning at arg(mu) / 2 pi of the
+    critical pair (1e-3), with two Lyapunov exponents ~0 (a torus) and the others < 0."""
+    (branch,), _ = continue_starts(OrbitMap(PAIR, {**FIG14C, "d": 10.5}, "d", 1),
+                                   [("impacting P1", ORBIT_AT_4_3, 1)], 10.5,
+                                   Settings((9.0, 10.5), step=0.05, max_step=0.3),
+                                   switch_depth=0)
+    kinds = [(e.kind, round(e.point.parameter, 4)) for e in branch.events]
+    assert ("Neimark-Sacker", 10.2994) in kinds and ("grazing", 9.0318) in kinds
+    ns = next(e.point for e in branch.events
+              if e.kind == "Neimark-Sacker" and e.point.parameter < 9.5)
+    d_ns, mu = ns.parameter, ns.multipliers
+    assert d_ns == pytest.approx(9.040184, abs=1e-5) and abs(mu[0]) == pytest.approx(1, abs=1e-6)
+    assert np.all(np.abs(mu[2:]) < 0.8) and ns.impacting
+    d_map = OrbitMap(PAIR, {**FIG14C, "d": 10.5}, "d", 1)
+
+    def fixed(d):
+        u, value, _ = correct(d_map, np.append(ns.state, d), None, 1e-10)
+        m, vectors = np.linalg.eig(value.monodromy)
+        k = np.argmax(np.abs(m))
+        return u[:-1], m[k], vectors[:, k].real
+
+    def iterate(d, state, periods):
+        problem = Problem(PAIR, {**FIG14C, "d": d}, ITERATION)
+        return record_trajectory(problem, state, 0.0, periods, 1).section_y
+
+    y, m, _ = fixed(d_ns - 0.004)
+    assert abs(m) < 1
+    assert np.max(np.abs(iterate(d_ns - 0.004, y + 1e-3 * np.eye(4)[0], 5000)[-1] - y)) < 1e-6
+    offsets = np.array([0.0005, 0.001, 0.002, 0.004])
+    sizes = []
+    for offset in offsets:
+        y, m, v = fixed(d_ns + offset)
+        points = iterate(d_ns + offset, y + 1e-3 * v / np.linalg.norm(v), 8000)
+        size, rotation = curve_size_and_rotation(points[-3000:], y)
+        earlier, _ = curve_size_and_rotation(points[-6000:-3000], y)
+        assert size == pytest.approx(earlier, rel=0.01)  # settled: a closed curve
+        assert rotation == pytest.approx(np.angle(mu[0]) / (2 * np.pi), abs=1e-3)
+        sizes.append(size)
+        if offset == 0.002:
+            spectrum = lyapunov_spectrum(Problem(PAIR, {**FIG14C, "d": d_ns + offset},
+                                                 ITERATION), points[-1], periods=500,
+                                         transient=20, segments=10)
+    slope = np.polyfit(np.log(offsets), np.log(sizes), 1)[0]
+    assert slope == pytest.approx(0.5, abs=0.06)
+    a, b = np.polyfit(offsets, np.square(sizes), 1)
+    assert abs(-b / a) < 5e-4  # size^2 = a (d - d_NS - delta0): delta0 ~ 0
+    assert np.all(np.abs(spectrum.exponents[:2]) < 3e-3) and spectrum.exponents[2] < -0.02
