@@ -176,6 +176,21 @@ $(LYAPUNOV): $(STAMP)
 	$(SI) plot lyapunov results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
 .PHONY: lyapunov $(LYAPUNOV)
 
+# Attractors that are not periodic (README): figure 15(b)'s unresolved share at c_c = 3, 4
+# and the period-5 bilinear design's point, split by the second stage into chaotic and
+# quasi-periodic attractors (with their Lyapunov exponents), long-period orbits and long
+# transients. About 1 and 5 minutes on 2 cores.
+CHAOS := chaos-fig15b chaos-design-p5
+chaos: $(CHAOS)
+chaos-fig15b: configs/figures/chaos_fig15b_c_c.toml
+chaos-design-p5: configs/figures/chaos_design_p5.toml
+$(CHAOS): $(STAMP)
+	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
+	$(SI) info results/$(subst -,_,$@).h5
+	$(SI) plot stability results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
+.PHONY: chaos $(CHAOS)
+FIGURES += $(CHAOS)
+
 # Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.
 DESIGNS := design-duffing design-bilinear
@@ -270,6 +285,7 @@ help:
 	@echo "  fig15b map-d-phi  one figure each (results/<target>.{h5,png}; QUICK=1 works too)"
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
 	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
+	@echo "  chaos             chaotic and quasi-periodic attractors: fig. 15(b) at c_c = 3, 4; the period-5 design"
 	@echo "  reproduce         the study's 89 statements checked -> results/reproduce.md (QUICK=1)"
 	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"
 	@echo "  clean             remove .venv and caches"

@@ -25,6 +25,9 @@ DISTINCT = [
     "#756bb1", "#fd8d3c", "#74c476", "#9e9ac8", "#6baed6", "#e7969c",
 ]
 
+# chaotic and quasi-periodic attractors A1, A2, ...: deep tones none of the above uses
+NOT_PERIODIC = ["#d81b60", "#00897b", "#1a237e", "#827717", "#6a1b9a", "#e65100"]
+
 
 def solution_order(ds) -> list[str]:
     """The catalogue's solution names in catalogue order (pairs: combinations; one body:
@@ -40,8 +43,9 @@ def colour_of(name: str, order: Sequence[str] = ()) -> str:
     Attractors that are not periodic ("impacting chaotic A1", ...) each take their own
     colour (by hash), impacting or not: they are few and must be told apart."""
     if " A" in name and ("chaotic" in name or "quasi-periodic" in name):
-        digest = int(hashlib.sha256(name.encode()).hexdigest(), 16)
-        return DISTINCT[digest % len(DISTINCT)]
+        number = name.rsplit(" A", 1)[1]
+        if number.isdigit():
+            return NOT_PERIODIC[(int(number) - 1) % len(NOT_PERIODIC)]
     if name.startswith("impacting"):
         return IMPACTING
     if name in SPECIAL:
