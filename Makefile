@@ -187,7 +187,7 @@ chaos-design-p5: configs/figures/chaos_design_p5.toml
 $(CHAOS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) info results/$(subst -,_,$@).h5
-	$(SI) plot stability results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
+	$(SI) plot stability results/$(subst -,_,$@).h5 --attractors -o results/$(subst -,_,$@).png
 .PHONY: chaos $(CHAOS)
 FIGURES += $(CHAOS)
 

@@ -66,7 +66,7 @@ class IntegratorSettings:
     max_switches_per_period: int = 10_000
     # the second stage for unresolved trajectories (analysis/section_follow.py,
     # analysis/nonperiodic.py; README "Attractors that are not periodic")
-    section_periods: int = 2000  # 0: off (unresolved stays unresolved)
+    section_periods: int = 4000  # 0: off (unresolved stays unresolved)
     section_cell: float = 0.5
     section_recurrences: int = 100
     section_locate: int = 500
