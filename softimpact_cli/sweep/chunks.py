@@ -104,6 +104,12 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     recurrence cells (``cell_size > 0``) each grid point and each CELL_BLOCK of flat
     indices starts an empty table, so a result does not depend on the chunk boundaries
     as long as they fall on blocks.
+
+    A trajectory the first pass leaves ``UNRESOLVED`` goes on to the second stage
+    (``analysis.section_follow``, when ``section_periods > 0``): a periodic orbit it
+    finds is labelled here; a recurrent set keeps ``UNRESOLVED_LABEL`` and is returned
+    in the ``second_stage.SECTION_ARRAYS`` for the parent to name. ``periods_used``
+    counts both stages; ``steps`` the first pass's only.
     """
     n = stop - start
     out = {k: np.zeros(n, dtype=t) for k, t in RESULT_FIELDS.items()}

@@ -83,3 +83,15 @@ def test_the_same_labels_on_a_pool_in_memory_and_on_dask(serial, tmp_path):
     pytest.importorskip("dask.distributed")
     out = tmp_path / "dask.h5"
     same(serial, run_sweep(scene(out), out, scheduler="local:2", chunk_size=2))
+
+
+def test_info_lists_the_attractor_with_its_exponents(serial):
+    from softimpact_cli.report.info import describe
+    from softimpact_cli.report.info_text import format_summary
+
+    summary = describe(serial)
+    (row,) = summary["nonperiodic"]
+    assert row["name"] == "chaotic A1" and row["members"] == 6 and row["kind"] == "chaotic"
+    line = next(x for x in format_summary(summary, serial).splitlines()
+                if x.strip().startswith("chaotic A1"))
+    assert "6 trajectories" in line and f"{row['exponents'][0]:+.4f}" in line
