@@ -179,17 +179,22 @@ $(LYAPUNOV): $(STAMP)
 # Attractors that are not periodic (README): figure 15(b)'s unresolved share at c_c = 3, 4
 # and the period-5 bilinear design's point, split by the second stage into chaotic and
 # quasi-periodic attractors (with their Lyapunov exponents), long-period orbits and long
-# transients. About 1 and 5 minutes on 2 cores.
+# transients; and the basins of the first two on figure 14(c)'s plane. About 1, 5 and 5
+# minutes on 2 cores.
 CHAOS := chaos-fig15b chaos-design-p5
-chaos: $(CHAOS)
+chaos: $(CHAOS) chaos-fig14c-basins
 chaos-fig15b: configs/figures/chaos_fig15b_c_c.toml
 chaos-design-p5: configs/figures/chaos_design_p5.toml
 $(CHAOS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) info results/$(subst -,_,$@).h5
 	$(SI) plot stability results/$(subst -,_,$@).h5 --attractors -o results/$(subst -,_,$@).png
-.PHONY: chaos $(CHAOS)
-FIGURES += $(CHAOS)
+chaos-fig14c-basins: $(STAMP)
+	$(SI) sweep configs/figures/chaos_fig14c_basins.toml -o results/chaos_fig14c_basins.h5 \
+		--overwrite $(QUICKFLAG)
+	$(SI) plot basins results/chaos_fig14c_basins.h5 -o results/chaos_fig14c_basins.png
+.PHONY: chaos chaos-fig14c-basins $(CHAOS)
+FIGURES += $(CHAOS) chaos-fig14c-basins
 
 # Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.
