@@ -27,7 +27,7 @@ AXIS_SYMBOLS = {"x1": "x_1", "x2": "x_2", "v1": r"\dot x_1", "v2": r"\dot x_2", 
 # halo, so they read on any basin (a dot of the basin's own colour read as a hole)
 MARKER = {"marker": "o", "ms": 7, "mec": "k", "mew": 1.4, "ls": ""}
 # the point cloud of an attractor that is not periodic (up to 200 section points): dots
-CLOUD = {"marker": ".", "ms": 2.5, "mec": "k", "mew": 0.2, "ls": ""}
+CLOUD = {"marker": "o", "ms": 2.0, "mec": "w", "mew": 0.3, "ls": ""}
 
 
 def _not_periodic(name: str) -> bool:
@@ -169,9 +169,9 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
             patch = Patch(facecolor=colour, edgecolor="k", lw=0.5)
             text = f"{latex[j]}  {100 * count / total:.1f}%"
             if pts.size:
-                style = CLOUD if _not_periodic(names[j]) else MARKER
-                ax.plot(pts[:, i0], pts[:, i1], mfc=colour, zorder=3, path_effects=halo,
-                        **style)
+                cloud = _not_periodic(names[j])  # dots, no halo: many points
+                ax.plot(pts[:, i0], pts[:, i1], mfc=colour, zorder=3,
+                        path_effects=[] if cloud else halo, **(CLOUD if cloud else MARKER))
                 marker = Line2D([], [], mfc=colour, path_effects=halo, **MARKER)
                 handles.append(((patch, marker), text))
             else:
