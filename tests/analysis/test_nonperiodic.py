@@ -132,3 +132,24 @@ def test_labels_do_not_depend_on_chunks_or_their_order(which, chunk, rnd):
 def test_a_chunk_file_from_before_the_second_stage_has_no_sets():
     assert unpack({"label": np.zeros(3)}) == []
     assert unpack(pack([], 4)) == []
+
+
+def test_recurrent_sets_survive_a_chunk_file(tmp_path):
+    """What a resumed run reads back from a chunk file names the same attractors."""
+    from softimpact_cli.store.sweep_store import RunIdentity, SweepStore
+    from softimpact_cli.sweep.chunks import RESULT_FIELDS
+
+    found = [recurrent(i, w, seed=i) for i, w in enumerate([0, 2, 0])]
+    result = {k: np.zeros(3, dtype=t) for k, t in RESULT_FIELDS.items()}
+    result["orbits"] = {}
+    result.update(pack([(r.flat, r.point, follow_of(r)) for r in found], 2))
+    identity = RunIdentity("c" * 64, chunk_size=3, n_total=3)
+    store = SweepStore(tmp_path / "r.h5")
+    store.write_chunk(0, result, identity, session_started=1.0)
+    back = unpack(store.read_chunk(0, identity)[0])
+    assert [(r.flat, r.point, r.impacting) for r in back] == [
+        (r.flat, r.point, r.impacting) for r in found]
+    assert all(np.array_equal(a.cloud, b.cloud) and np.array_equal(a.end_state, b.end_state)
+               for a, b in zip(back, found, strict=True))
+    assert identify(back, spectrum_of_centre, 0.004)[0].tolist() == \
+        identify(found, spectrum_of_centre, 0.004)[0].tolist()
