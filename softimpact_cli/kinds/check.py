@@ -66,6 +66,15 @@ def rerun_labels(scene: Scene, settings: IntegratorSettings, catalogues: dict,
     ``settings``, each in a one-trajectory chunk (so recurrence cells never carry over
     from one to the next), on ``executor`` (default: this process). Attractors that are
     not periodic are named after ``result``'s where they match (``second_stage``)."""
+    labels, wall, _ = rerun_named(scene, settings, catalogues, names, picks, executor, result)
+    return labels, wall
+
+
+def rerun_named(scene: Scene, settings: IntegratorSettings, catalogues: dict,
+                names: tuple[str, ...], picks: np.ndarray, executor=None, result=None):
+    """``rerun_labels`` and the table of the attractors that are not periodic it named
+    (``second_stage.relabel``): pass it as ``result`` to a rerun compared with this one,
+    so that the same attractor takes the same number in both."""
     from ..sweep.executors import LocalExecutor
     from ..sweep.runner import sweep_context
     from ..sweep.second_stage import relabel, unpack
@@ -82,12 +91,14 @@ def rerun_labels(scene: Scene, settings: IntegratorSettings, catalogues: dict,
         labels[j] = chunk["label"][0]
         by_flat[int(picks[j])] = j
         recurrent += unpack(chunk)
+    table = None
     if recurrent:  # name the second stage's sets (flat order), as the result was named
         flat_labels = np.zeros(max(by_flat) + 1, dtype=np.int64)
-        relabel(context, flat_labels, {}, recurrent, tuple(scene.system.state_names), result)
+        table = relabel(context, flat_labels, {}, recurrent, tuple(scene.system.state_names),
+                        result)
         for r in recurrent:
             labels[by_flat[r.flat]] = flat_labels[r.flat]
-    return labels, time.perf_counter() - start
+    return labels, time.perf_counter() - start, table if table is not None else result
 
 
 def label_changes(before: np.ndarray, after: np.ndarray, names: tuple[str, ...]
@@ -110,21 +121,22 @@ def check_sweep(scene: Scene, sample: int, seed: int, result=None, executor=None
     catalogues, names = prepare_catalogues(scene)
     total = scene.grid.size * scene.initial_conditions.count
     picks = sample_indices(total, sample, seed)
+    named = result  # whose attractor numbers the reruns keep
     if result is not None:
         scene_labels = result["label"].values.ravel()[picks]
         scene_wall = float(result.attrs["wall_s"]) * picks.size / total
     else:
-        scene_labels, scene_wall = rerun_labels(scene, scene.integrator, catalogues, names,
-                                                picks, executor)
+        scene_labels, scene_wall, named = rerun_named(scene, scene.integrator, catalogues,
+                                                      names, picks, executor)
     tight_labels, tight_wall = rerun_labels(scene, tightened(scene.integrator), catalogues,
-                                            names, picks, executor, result)
+                                            names, picks, executor, named)
     changed = scene_labels != tight_labels
     report = {}
     if result is not None and shortcuts(scene.integrator) and changed.any():
         # the same settings without capture or cells: tells their error from the
         # tolerance's (nothing to tell when no label changed)
         alone, _ = rerun_labels(scene, without_shortcuts(scene.integrator), catalogues, names,
-                                picks, executor, result)
+                                picks, executor, named)
         report["changed_alone"] = int((alone != tight_labels).sum())
     return {**report, "kind": "labels", "sample": int(picks.size),
             "changed": int(changed.sum()),
