@@ -179,7 +179,7 @@ $(LYAPUNOV): $(STAMP)
 # Attractors that are not periodic (README): figure 15(b)'s unresolved share at c_c = 3, 4
 # and the period-5 bilinear design's point, split by the second stage into chaotic and
 # quasi-periodic attractors (with their Lyapunov exponents), long-period orbits and long
-# transients; and the basins of the first two on figure 14(c)'s plane. About 1, 4 and 16
+# transients; and the basins of the first two on figure 14(c)'s plane. About 1, 4 and 10-16
 # minutes on 2 cores shared with other jobs (the last without its verification).
 CHAOS := chaos-fig15b chaos-design-p5
 chaos: $(CHAOS) chaos-fig14c-basins
