@@ -194,6 +194,26 @@ $(CONTINUATION): $(STAMP)
 	$(SI) info results/$(subst -,_,$@).h5
 .PHONY: continuation $(CONTINUATION)
 
+# Attractors that are not periodic (README): figure 15(b)'s unresolved share at c_c = 3, 4
+# and the period-5 bilinear design's point, split by the second stage into chaotic and
+# quasi-periodic attractors (with their Lyapunov exponents), long-period orbits and long
+# transients; and the basins of the first two on figure 14(c)'s plane. About 1, 4 and 10-16
+# minutes on 2 cores shared with other jobs (the last without its verification).
+CHAOS := chaos-fig15b chaos-design-p5
+chaos: $(CHAOS) chaos-fig14c-basins
+chaos-fig15b: configs/figures/chaos_fig15b_c_c.toml
+chaos-design-p5: configs/figures/chaos_design_p5.toml
+$(CHAOS): $(STAMP)
+	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
+	$(SI) info results/$(subst -,_,$@).h5
+	$(SI) plot stability results/$(subst -,_,$@).h5 --attractors -o results/$(subst -,_,$@).png
+chaos-fig14c-basins: $(STAMP)
+	$(SI) sweep configs/figures/chaos_fig14c_basins.toml -o results/chaos_fig14c_basins.h5 \
+		--overwrite $(QUICKFLAG)
+	$(SI) plot basins results/chaos_fig14c_basins.h5 -o results/chaos_fig14c_basins.png
+.PHONY: chaos chaos-fig14c-basins $(CHAOS)
+FIGURES += $(CHAOS) chaos-fig14c-basins
+
 # Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.
 DESIGNS := design-duffing design-bilinear
@@ -289,6 +309,7 @@ help:
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
 	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
 	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda, fig. 14(c) NS"
+	@echo "  chaos             chaotic and quasi-periodic attractors: fig. 15(b) at c_c = 3, 4; the period-5 design"
 	@echo "  reproduce         the study's 89 statements checked -> results/reproduce.md (QUICK=1)"
 	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"
 	@echo "  clean             remove .venv and caches"

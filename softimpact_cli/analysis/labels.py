@@ -7,7 +7,9 @@ ASCII names:
   on attractor nr (period pr), relative shift s;
 - ``impacting P{p}``: a periodic solution with contact in the steady state, period p;
 - ``unresolved``, ``diverged``: outcomes that are not periodic orbits;
-- ``unmatched P{p}``: a non-impacting periodic orbit that matches no catalogue attractor.
+- ``unmatched P{p}``: a non-impacting periodic orbit that matches no catalogue attractor;
+- ``chaotic A{n}``, ``quasi-periodic A{n}`` and their ``impacting`` forms: attractor
+  number n that is not periodic (found by the second stage, :mod:`.nonperiodic`).
 
 **The shift s.** Each body's attractor has its p section points ordered canonically:
 point 0 is the one with the largest displacement x, point i+1 is the stroboscopic map's
@@ -24,8 +26,10 @@ from dataclasses import dataclass
 from math import gcd
 
 from ..kernels.codes import (
+    BASE_WIDTH,
     DIVERGED_LABEL,
     IMPACTING_BASE,
+    NONPERIODIC_BASES,
     PENDING,
     UNMATCHED_BASE,
     UNRESOLVED_LABEL,
@@ -38,7 +42,8 @@ DIVERGED = "diverged"
 @dataclass(frozen=True)
 class Label:
     """A parsed name. ``kind``: 'body', 'pair', 'impacting', 'unmatched', 'unresolved',
-    'diverged'."""
+    'diverged', or one of ``NONPERIODIC_KINDS`` ('chaotic', 'impacting chaotic',
+    'quasi-periodic', 'impacting quasi-periodic': attractor number ``left``)."""
 
     kind: str
     period: int = 0
@@ -56,6 +61,8 @@ class Label:
             return f"L{self.period}^{self.left}"
         if self.kind in ("impacting", "unmatched"):
             return f"{self.kind} P{self.period}"
+        if self.kind in NONPERIODIC_KINDS:
+            return f"{self.kind} A{self.left}"
         return self.kind
 
     @property
@@ -67,12 +74,16 @@ class Label:
             return f"$L^{{{self.left}}}_{{{self.period}}}$"
         if self.kind in ("impacting", "unmatched"):
             return f"{self.kind} $P_{{{self.period}}}$"
+        if self.kind in NONPERIODIC_KINDS:
+            return f"{self.kind} $A_{{{self.left}}}$"
         return self.kind
 
 
+NONPERIODIC_KINDS = tuple(NONPERIODIC_BASES)
 _PAIR = re.compile(r"^L(\d+)\^(\d+) R(\d+)-(\d+)\^(\d+)$")
 _BODY = re.compile(r"^L(\d+)\^(\d+)$")
 _PERIODIC = re.compile(r"^(impacting|unmatched) P(\d+)$")
+_NONPERIODIC = re.compile(r"^((?:impacting )?(?:chaotic|quasi-periodic)) A(\d+)$")
 
 
 def parse_label(name: str) -> Label:
@@ -92,11 +103,16 @@ def parse_label(name: str) -> Label:
         if int(m.group(2)) < 1:
             raise ValueError(f"{name!r}: the period starts at 1")
         return Label(m.group(1), int(m.group(2)))
+    if m := _NONPERIODIC.match(name):
+        if not 1 <= int(m.group(2)) < BASE_WIDTH:
+            raise ValueError(f"{name!r}: attractor numbers run from 1 to {BASE_WIDTH - 1}")
+        return Label(m.group(1), left=int(m.group(2)))
     if name in (UNRESOLVED, DIVERGED):
         return Label(name)
     raise ValueError(
         f"cannot read label {name!r}: use 'L1^1 R1-0^2' (pair), 'L2^1' (one body), "
-        "'impacting P3', 'unmatched P3', 'unresolved' or 'diverged'"
+        "'impacting P3', 'unmatched P3', 'chaotic A1', 'impacting quasi-periodic A2', "
+        "'unresolved' or 'diverged'"
     )
 
 
@@ -122,6 +138,8 @@ def code_of(label: Label, catalogue_names: tuple[str, ...]) -> int:
         return IMPACTING_BASE + label.period
     if label.kind == "unmatched":
         return UNMATCHED_BASE + label.period
+    if label.kind in NONPERIODIC_KINDS:
+        return NONPERIODIC_BASES[label.kind] + label.left
     return UNRESOLVED_LABEL if label.kind == UNRESOLVED else DIVERGED_LABEL
 
 
@@ -140,6 +158,9 @@ def name_of(code: int, catalogue_names: tuple[str, ...]) -> str:
         return f"unmatched P{code - UNMATCHED_BASE}"
     if IMPACTING_BASE < code < IMPACTING_BASE + 1000:
         return f"impacting P{code - IMPACTING_BASE}"
+    for kind, base in NONPERIODIC_BASES.items():
+        if base < code < base + BASE_WIDTH:
+            return f"{kind} A{code - base}"
     raise ValueError(f"unknown label code {code}")
 
 

@@ -27,10 +27,10 @@ def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list) 
     ic_dims = str(ds.attrs["ic_dims"]).split()
     label = ds["label"]
     present = xr.concat([(label == c).any(ic_dims) for c in codes], dim="label_index")
-    periodic = xr.DataArray([k not in ("unresolved", "diverged") for k in kinds],
-                            dims="label_index")
+    attractor = xr.DataArray([k not in ("unresolved", "diverged") for k in kinds],
+                             dims="label_index")
     free = xr.DataArray([k in ("pair", "body", "unmatched") for k in kinds], dims="label_index")
-    found = (present & periodic).sum("label_index")
+    found = (present & attractor).sum("label_index")
     found_free = (present & free).sum("label_index")
     phis = np.unique(np.asarray(ds["phi"].values, dtype=float))
     dc = critical_distances(system, values, left_attractors, phis)
@@ -43,7 +43,8 @@ def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list) 
         predicted_count=predicted.transpose(*dims).assign_attrs(
             long_name="non-impacting combinations predicted to survive (d_crit < d)"),
         found_count=found.transpose(*dims).assign_attrs(
-            long_name="distinct periodic attractors found (impacting included)"),
+            long_name="distinct attractors found (impacting, chaotic and quasi-periodic "
+                      "included)"),
         found_nonimpacting=found_free.transpose(*dims).assign_attrs(
             long_name="distinct non-impacting attractors found"),
         d_crit=dc["d_crit"].rename(phi="dcrit_phi", combination="dcrit_combination"),

@@ -44,9 +44,9 @@ def groups(names: list[str]) -> dict[str, list[int]]:
     for i, name in enumerate(names):
         out.setdefault(name, []).append(i)
         kind = parse_label(name).kind
-        if kind == "impacting":
+        if kind.startswith("impacting"):  # periodic, chaotic or quasi-periodic
             out.setdefault("impacting (all)", []).append(i)
-        elif kind in ("pair", "body", "unmatched"):
+        elif kind in ("pair", "body", "unmatched", "chaotic", "quasi-periodic"):
             out.setdefault("non-impacting (sum)", []).append(i)
     out.setdefault("impacting (all)", [])
     out.setdefault("non-impacting (sum)", [])

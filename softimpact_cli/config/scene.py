@@ -64,6 +64,15 @@ class IntegratorSettings:
     divergence_bound: float = 1e6
     max_steps_per_period: int = 200_000
     max_switches_per_period: int = 10_000
+    # the second stage for unresolved trajectories (analysis/section_follow.py,
+    # analysis/nonperiodic.py; README "Attractors that are not periodic")
+    section_periods: int = 4000  # 0: off (unresolved stays unresolved)
+    section_cell: float = 0.5
+    section_recurrences: int = 100
+    section_locate: int = 500
+    section_max_period: int = 200
+    section_lyapunov_periods: int = 400
+    section_zero_exponent: float = 0.004
 
     @property
     def resolved_method(self) -> str:
@@ -163,6 +172,16 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
                                          100_000_000),
         max_switches_per_period=sec.integer("max_switches_per_period",
                                             d.max_switches_per_period, 2, 100_000_000),
+        section_periods=sec.integer("section_periods", d.section_periods, 0, 10_000_000),
+        section_cell=sec.number("section_cell", d.section_cell, positive),
+        section_recurrences=sec.integer("section_recurrences", d.section_recurrences, 1,
+                                        1_000_000),
+        section_locate=sec.integer("section_locate", d.section_locate, 10, 1_000_000),
+        section_max_period=sec.integer("section_max_period", d.section_max_period, 1, 999),
+        section_lyapunov_periods=sec.integer("section_lyapunov_periods",
+                                             d.section_lyapunov_periods, 10, 10_000_000),
+        section_zero_exponent=sec.number("section_zero_exponent", d.section_zero_exponent,
+                                         positive),
     )
     sec.finish()
     return settings

@@ -36,13 +36,25 @@ MIXED_CELL = -4  # a recurrence cell visited on the way to different labels (cel
 PENDING = -9  # not computed yet (never in a complete result)
 IMPACTING_BASE = 1000  # impacting P{p} -> 1000 + p
 UNMATCHED_BASE = 2000  # unmatched P{p} -> 2000 + p (non-impacting, in no catalogue)
+# Attractors that are not periodic, found by the second stage (analysis/nonperiodic.py):
+# base + n names attractor A{n} (n = 1 .. 999, numbered over the whole result in the order
+# of their first trajectory's flat index, so every worker count and executor agrees).
+CHAOTIC_BASE = 3000  # chaotic A{n}
+IMPACTING_CHAOTIC_BASE = 4000  # impacting chaotic A{n}
+QUASI_PERIODIC_BASE = 5000  # quasi-periodic A{n}
+IMPACTING_QUASI_PERIODIC_BASE = 6000  # impacting quasi-periodic A{n}
+NONPERIODIC_BASES = {"chaotic": CHAOTIC_BASE, "impacting chaotic": IMPACTING_CHAOTIC_BASE,
+                     "quasi-periodic": QUASI_PERIODIC_BASE,
+                     "impacting quasi-periodic": IMPACTING_QUASI_PERIODIC_BASE}
+BASE_WIDTH = 1000  # every base above holds codes base + 1 .. base + 999
 
 # ------------------------------------------------------------------ 3. classification method
 BY_OWN_REPEAT = 0  # its own section points repeated
 BY_KNOWN_ORBIT = 1  # it came within the capture radius of a known stable orbit
 BY_CELLS = 2  # recurrence cells of earlier trajectories named it
+BY_SECTION = 3  # the second stage followed it on the section (analysis/section_follow.py)
 CLASSIFIED_BY = {BY_OWN_REPEAT: "own repeat", BY_KNOWN_ORBIT: "known orbit",
-                 BY_CELLS: "recurrence cells"}
+                 BY_CELLS: "recurrence cells", BY_SECTION: "followed on the section"}
 
 # status -> (outcome class, message telling the user what to change)
 STATUS_TABLE = {

@@ -60,13 +60,24 @@ def sample_indices(total: int, sample: int, seed: int) -> np.ndarray:
 
 
 def rerun_labels(scene: Scene, settings: IntegratorSettings, catalogues: dict,
-                 names: tuple[str, ...], picks: np.ndarray, executor=None
+                 names: tuple[str, ...], picks: np.ndarray, executor=None, result=None
                  ) -> tuple[np.ndarray, float]:
     """(label codes, wall s) of the trajectories at flat indices ``picks`` run at
     ``settings``, each in a one-trajectory chunk (so recurrence cells never carry over
-    from one to the next), on ``executor`` (default: this process)."""
+    from one to the next), on ``executor`` (default: this process). Attractors that are
+    not periodic are named after ``result``'s where they match (``second_stage``)."""
+    labels, wall, _ = rerun_named(scene, settings, catalogues, names, picks, executor, result)
+    return labels, wall
+
+
+def rerun_named(scene: Scene, settings: IntegratorSettings, catalogues: dict,
+                names: tuple[str, ...], picks: np.ndarray, executor=None, result=None):
+    """``rerun_labels`` and the table of the attractors that are not periodic it named
+    (``second_stage.relabel``): pass it as ``result`` to a rerun compared with this one,
+    so that the same attractor takes the same number in both."""
     from ..sweep.executors import LocalExecutor
     from ..sweep.runner import sweep_context
+    from ..sweep.second_stage import relabel, unpack
 
     ic = scene.initial_conditions
     t0 = ic.random_t0(2 * np.pi / float(scene.values["w"])) if ic.t0 is None else None
@@ -74,9 +85,20 @@ def rerun_labels(scene: Scene, settings: IntegratorSettings, catalogues: dict,
     chunks = [(j, int(i), int(i) + 1) for j, i in enumerate(picks)]
     labels = np.empty(len(picks), dtype=np.int64)
     start = time.perf_counter()
-    for j, result in (executor or LocalExecutor(1)).run(context, chunks):
-        labels[j] = result["label"][0]
-    return labels, time.perf_counter() - start
+    by_flat: dict[int, int] = {}
+    recurrent = []
+    for j, chunk in (executor or LocalExecutor(1)).run(context, chunks):
+        labels[j] = chunk["label"][0]
+        by_flat[int(picks[j])] = j
+        recurrent += unpack(chunk)
+    table = None
+    if recurrent:  # name the second stage's sets (flat order), as the result was named
+        flat_labels = np.zeros(max(by_flat) + 1, dtype=np.int64)
+        table = relabel(context, flat_labels, {}, recurrent, tuple(scene.system.state_names),
+                        result)
+        for r in recurrent:
+            labels[by_flat[r.flat]] = flat_labels[r.flat]
+    return labels, time.perf_counter() - start, table if table is not None else result
 
 
 def label_changes(before: np.ndarray, after: np.ndarray, names: tuple[str, ...]
@@ -99,21 +121,22 @@ def check_sweep(scene: Scene, sample: int, seed: int, result=None, executor=None
     catalogues, names = prepare_catalogues(scene)
     total = scene.grid.size * scene.initial_conditions.count
     picks = sample_indices(total, sample, seed)
+    named = result  # whose attractor numbers the reruns keep
     if result is not None:
         scene_labels = result["label"].values.ravel()[picks]
         scene_wall = float(result.attrs["wall_s"]) * picks.size / total
     else:
-        scene_labels, scene_wall = rerun_labels(scene, scene.integrator, catalogues, names,
-                                                picks, executor)
+        scene_labels, scene_wall, named = rerun_named(scene, scene.integrator, catalogues,
+                                                      names, picks, executor)
     tight_labels, tight_wall = rerun_labels(scene, tightened(scene.integrator), catalogues,
-                                            names, picks, executor)
+                                            names, picks, executor, named)
     changed = scene_labels != tight_labels
     report = {}
     if result is not None and shortcuts(scene.integrator) and changed.any():
         # the same settings without capture or cells: tells their error from the
         # tolerance's (nothing to tell when no label changed)
         alone, _ = rerun_labels(scene, without_shortcuts(scene.integrator), catalogues, names,
-                                picks, executor)
+                                picks, executor, named)
         report["changed_alone"] = int((alone != tight_labels).sum())
     return {**report, "kind": "labels", "sample": int(picks.size),
             "changed": int(changed.sum()),

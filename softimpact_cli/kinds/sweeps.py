@@ -125,6 +125,9 @@ PLOTS = {
                             choices=("d", "phi", "k_c", "c_c", "t0")), SHOW_ERROR,
                  PlotOption("--entropy", "entropy", "Also the basin entropy of the shares "
                             "H with its 95% bootstrap band (right-hand axis).",
+                            kind="flag"),
+                 PlotOption("--attractors", "attractors", "Also a panel with the section "
+                            "points of the chaotic and quasi-periodic attractors.",
                             kind="flag")),
         complete=True),
     "map": PlotSpec("Predicted and found numbers of coexisting solutions over two "

@@ -299,17 +299,30 @@ def basins(ds, ax=None, *, max_panels: int = 36, show_error: bool = False) -> Fi
 
 
 def stability(ds, ax=None, *, against: str | None = None, show_error: bool = False,
-              entropy: bool = False) -> Figure:
+              entropy: bool = False, attractors: bool = False) -> Figure:
     """Basin-stability curves with 95% Wilson bands against the grid axis ``against``
     (default: the swept one). One panel. ``show_error``: print the measured label error
     at the foot (``error_note``); ``entropy``: the basin entropy of the shares on a
-    right-hand axis."""
+    right-hand axis; ``attractors``: a second panel with the section points of the
+    attractors that are not periodic (``ax`` then a Figure or None)."""
     from ..analysis.stability import basin_stability
     from .stability_figure import draw_stability
 
     swept = str(_expect(ds, "stability").attrs.get("grid_swept", "")).split()
-    fig = draw_stability(ds, basin_stability(ds), against or (swept[0] if swept else "c_c"),
-                         ax, entropy)
+    axis = against or (swept[0] if swept else "c_c")
+    if attractors:
+        from .section_clouds import draw_clouds
+
+        if ax is not None and not is_figure(ax):
+            raise ValueError("plot.stability: attractors=True draws two panels: pass a "
+                             "Figure or None, not an Axes")
+        container = new_figure(figsize=(15.0, 5.2)) if ax is None else ax
+        left, right = container.subplots(1, 2, width_ratios=[3, 2])
+        draw_stability(ds, basin_stability(ds), axis, left, entropy)
+        draw_clouds(ds, right)
+        fig = root_figure(container)
+        return error_note(fig, ds) if show_error else fig
+    fig = draw_stability(ds, basin_stability(ds), axis, ax, entropy)
     return error_note(fig, ds) if show_error else fig
 
 

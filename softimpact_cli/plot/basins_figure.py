@@ -6,6 +6,7 @@ from math import ceil
 
 import numpy as np
 
+from ..analysis.labels import NONPERIODIC_KINDS, parse_label
 from ..report.info import GRID_AXES, grid_dims, grid_point
 from . import (
     multiple_text,
@@ -25,6 +26,16 @@ AXIS_SYMBOLS = {"x1": "x_1", "x2": "x_2", "v1": r"\dot x_1", "v2": r"\dot x_2", 
 # an attractor's section points: its basin's colour inside a black ring and a white
 # halo, so they read on any basin (a dot of the basin's own colour read as a hole)
 MARKER = {"marker": "o", "ms": 7, "mec": "k", "mew": 1.4, "ls": ""}
+# the point cloud of an attractor that is not periodic (up to 200 section points): dots
+CLOUD = {"marker": "o", "ms": 2.0, "mec": "w", "mew": 0.3, "ls": ""}
+
+
+def _not_periodic(name: str) -> bool:
+    """A chaotic or quasi-periodic attractor's name (its points are a cloud)."""
+    try:
+        return parse_label(name).kind in NONPERIODIC_KINDS
+    except ValueError:
+        return False
 
 
 def _halo():
@@ -158,8 +169,9 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
             patch = Patch(facecolor=colour, edgecolor="k", lw=0.5)
             text = f"{latex[j]}  {100 * count / total:.1f}%"
             if pts.size:
-                ax.plot(pts[:, i0], pts[:, i1], mfc=colour, zorder=3, path_effects=halo,
-                        **MARKER)
+                cloud = _not_periodic(names[j])  # dots, no halo: many points
+                ax.plot(pts[:, i0], pts[:, i1], mfc=colour, zorder=3,
+                        path_effects=[] if cloud else halo, **(CLOUD if cloud else MARKER))
                 marker = Line2D([], [], mfc=colour, path_effects=halo, **MARKER)
                 handles.append(((patch, marker), text))
             else:

@@ -5,8 +5,8 @@ amplitude, combinations by left attractor, right attractor and shift), and that 
 the same in every result of the system, whatever d, phi, k_c or c_c. Solutions take
 colours from DISTINCT in that order, so no two solutions of one catalogue share a colour
 (up to len(DISTINCT)); impacting solutions share one extra colour, and unresolved and
-diverged outcomes have their own. Without the catalogue order (a bare name), a name
-falls back to a stable hash of itself.
+diverged outcomes have their own; chaotic and quasi-periodic attractors take one each.
+Without the catalogue order (a bare name), a name falls back to a stable hash of itself.
 """
 
 from __future__ import annotations
@@ -25,6 +25,9 @@ DISTINCT = [
     "#756bb1", "#fd8d3c", "#74c476", "#9e9ac8", "#6baed6", "#e7969c",
 ]
 
+# chaotic and quasi-periodic attractors A1, A2, ...: deep tones none of the above uses
+NOT_PERIODIC = ["#d81b60", "#00897b", "#1a237e", "#827717", "#6a1b9a", "#e65100"]
+
 
 def solution_order(ds) -> list[str]:
     """The catalogue's solution names in catalogue order (pairs: combinations; one body:
@@ -36,7 +39,13 @@ def solution_order(ds) -> list[str]:
 
 
 def colour_of(name: str, order: Sequence[str] = ()) -> str:
-    """Colour of a solution name; ``order`` is ``solution_order`` of the result drawn."""
+    """Colour of a solution name; ``order`` is ``solution_order`` of the result drawn.
+    Attractors that are not periodic ("impacting chaotic A1", ...) each take their own
+    colour (by hash), impacting or not: they are few and must be told apart."""
+    if " A" in name and ("chaotic" in name or "quasi-periodic" in name):
+        number = name.rsplit(" A", 1)[1]
+        if number.isdigit():
+            return NOT_PERIODIC[(int(number) - 1) % len(NOT_PERIODIC)]
     if name.startswith("impacting"):
         return IMPACTING
     if name in SPECIAL:

@@ -56,6 +56,10 @@ def describe(ds) -> dict:
     kind = KINDS.get(str(ds.attrs.get("analysis")))
     if kind is not None and kind.summary is not None:
         out.update(kind.summary(ds))
+    if "nonperiodic_code" in ds:  # the second stage's attractors (report/nonperiodic.py)
+        from .nonperiodic import nonperiodic_summary
+
+        out["nonperiodic"] = nonperiodic_summary(ds)
     verification = verification_summary(ds.attrs)
     if verification is not None:
         out["verification"] = verification

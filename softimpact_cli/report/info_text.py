@@ -20,7 +20,7 @@ NOT_FIXED = {
 SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
                    "combinations", "branches", "d_crit", "orbit", "variables", "target",
                    "best", "runners_up", "reference", "robustness", "verification", "tipping",
-                   "fractality", "spectra", "fatal_shock", "continuation"}
+                   "fractality", "spectra", "fatal_shock", "continuation", "nonperiodic"}
 
 
 def text(value) -> str:
@@ -99,6 +99,10 @@ def format_summary(summary: dict, ds, max_points: int = 50) -> str:
         lines += _branch_table(summary["branches"])
     if "d_crit" in summary:
         lines += _dcrit_table(summary["d_crit"])
+    if "nonperiodic" in summary:
+        from .nonperiodic import nonperiodic_lines
+
+        lines += nonperiodic_lines(summary["nonperiodic"])
     lines += verification_lines(ds.attrs)  # the label error, next to the shares
     if "stability" in summary:
         lines += _stability_table(summary["stability"], max_points)

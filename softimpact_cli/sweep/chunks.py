@@ -13,17 +13,21 @@ import numpy as np
 from ..analysis.catalogue import Catalogue, label_orbit
 from ..analysis.engine import KnownOrbits, Problem, RecurrenceCells, classify_state
 from ..analysis.labels import code_of
+from ..analysis.section_follow import FAILED, PERIODIC, RECURRENT, follow_section
 from ..config import GRID_AXES, Grid, IntegratorSettings
 from ..kernels.codes import (
     BY_CELLS,
     BY_KNOWN_ORBIT,
     BY_OWN_REPEAT,
+    BY_SECTION,
     CONVERGED,
     MIXED_CELL,
     NO_ORBIT,
+    UNRESOLVED,
     label_code_of_status,
 )
 from ..systems import get_system
+from .second_stage import pack
 
 CAPTURE_MARGIN = 10.0  # d - d_crit must exceed this many capture radii
 # Recurrence cells start an empty table at every grid point and every CELL_BLOCK flat
@@ -100,6 +104,12 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     recurrence cells (``cell_size > 0``) each grid point and each CELL_BLOCK of flat
     indices starts an empty table, so a result does not depend on the chunk boundaries
     as long as they fall on blocks.
+
+    A trajectory the first pass leaves ``UNRESOLVED`` goes on to the second stage
+    (``analysis.section_follow``, when ``section_periods > 0``): a periodic orbit it
+    finds is labelled here; a recurrent set keeps ``UNRESOLVED_LABEL`` and is returned
+    in the ``second_stage.SECTION_ARRAYS`` for the parent to name. ``periods_used``
+    counts both stages; ``steps`` the first pass's only.
     """
     n = stop - start
     out = {k: np.zeros(n, dtype=t) for k, t in RESULT_FIELDS.items()}
@@ -111,6 +121,7 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     known = None
     cells = None
     summary: dict[int, tuple[int, int, float]] = {}  # code -> (period, contacts, max_pen)
+    recurrent = []  # (flat, grid point, SectionFollow) of the second stage's recurrent ones
     current = -1
     catalogue: Catalogue | None = None
     for k in range(n):
@@ -142,16 +153,35 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
         else:
             code = label_code_of_status(cls.status)
             period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
+        status, used = cls.status, cls.periods_used
+        if cls.status == UNRESOLVED and s.section_periods > 0:  # the second stage
+            follow = follow_section(problem, ctx.states[ic], t0, cls.periods_used)
+            used += follow.periods
+            if follow.outcome == FAILED:
+                status = follow.status
+                code = label_code_of_status(status)
+            elif follow.outcome == PERIODIC:
+                status, how = CONVERGED, BY_SECTION
+                label = label_orbit(catalogue, follow.orbit, follow.impacting, ctx.label_tol)
+                code = code_of(label, ctx.names)
+                if (point, code) not in orbits:
+                    orbits[(point, code)] = (flat, follow.orbit)
+                period, contacts, max_pen = len(follow.orbit), follow.contacts, follow.max_g
+            elif follow.outcome == RECURRENT:  # named by the parent (second_stage.relabel)
+                how = BY_SECTION
+                contacts, max_pen = follow.contacts, follow.max_g
+                recurrent.append((flat, point, follow))
         if cells is not None and cls.status == CONVERGED:
             cells.remember(cls, code)
         out["label"][k] = code
-        out["status"][k] = cls.status
+        out["status"][k] = status
         out["period"][k] = period
-        out["periods_used"][k] = cls.periods_used
+        out["periods_used"][k] = used
         out["contacts"][k] = contacts
         out["max_penetration"][k] = max_pen
         out["captured"][k] = how
         out["steps"][k] = cls.counters["steps"]
         out["stiff_steps"][k] = cls.counters["stiff_steps"]
     out["orbits"] = orbits
+    out.update(pack(recurrent, ctx.states.shape[1]))
     return out

@@ -29,6 +29,7 @@ from .chunks import CELL_BLOCK
 from .executors import make_executor
 from .plan import default_chunk_size
 from .runner import sweep_context
+from .second_stage import relabel, unpack
 
 
 def pair_catalogue(scene: Scene, search: BodySearch, phi: float) -> Catalogue:
@@ -86,12 +87,16 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
         size = default_chunk_size(total, getattr(executor, "workers", 8), block)
         chunks = [(i, lo, min(lo + size, total)) for i, lo in enumerate(range(0, total, size))]
         labels = np.empty(total, dtype=np.int32)
+        recurrent: list = []
         tick = progress(total) if progress else None
         for index, result in executor.run(context, chunks):
             lo = chunks[index][1]
             labels[lo: lo + len(result["label"])] = result["label"]
+            recurrent += unpack(result)
             if tick:
                 tick(len(result["label"]))
+        # the second stage's attractors, named over this batch in flat-index order
+        relabel(context, labels, {}, recurrent, tuple(scene.system.state_names))
         return labels.reshape(len(points), stop - start)
 
     try:

@@ -21,6 +21,7 @@ from .chunks import RESULT_FIELDS
 from .executors import make_executor
 from .plan import Plan, chunk_size_for
 from .runner import keep_first_orbits, labelled_dataset, prepare_inputs
+from .second_stage import unpack
 
 
 def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | None = None,
@@ -46,6 +47,7 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
     inputs = prepare_inputs(scene, echo)
     arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
     orbits: dict = {}
+    recurrent: list = []
     tick = progress(plan.n_total, 0) if progress else None
     todo = [(i, *plan.chunk(i)) for i in range(plan.n_chunks)]
     for index, result in executor.run(inputs.context, todo):
@@ -53,9 +55,10 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
         for key in RESULT_FIELDS:
             arrays[key][start:stop] = result[key]
         keep_first_orbits(orbits, result["orbits"])
+        recurrent += unpack(result)
         if tick:
             tick(result["label"])
-    ds = labelled_dataset(scene, inputs, arrays, orbits)
+    ds = labelled_dataset(scene, inputs, arrays, orbits, recurrent)
     ds.attrs.update(provenance(scene, started, time.time(), time.perf_counter() - t0))
     ds.attrs.update({"n": plan.n_total, "n_chunks": plan.n_chunks, "chunk_size": plan.chunk_size,
                      "plan": plan.describe(), "executor": executor.describe(), "resumed": 0,

@@ -99,7 +99,7 @@ def choose_tolerance(scene: Scene, verification_sample: int | None = None, execu
     ``verification_sample``: the size the verification will rerun (``--check N``;
     default from [verification]), whose indices the pilot avoids.
     """
-    from ..kinds.check import rerun_labels, tightened
+    from ..kinds.check import rerun_labels, rerun_named, tightened
     from .runner import prepare_catalogues
 
     total = scene.grid.size * scene.initial_conditions.count
@@ -114,7 +114,8 @@ def choose_tolerance(scene: Scene, verification_sample: int | None = None, execu
     reference = tightened(scene.integrator)
     echo(f"tolerance pilot: {picks.size} trajectories at rtol {reference.rtol:g} "
          f"(reference) and at rtol {', '.join(f'{r:g}' for r in _looser(scene))}")
-    ref_labels, ref_wall = rerun_labels(scene, reference, catalogues, names, picks, executor)
+    ref_labels, ref_wall, ref_named = rerun_named(scene, reference, catalogues, names, picks,
+                                                  executor)  # trials keep its attractor numbers
     trials: list[Trial] = []
     chosen = scene.integrator
     for rtol in _looser(scene):
@@ -127,7 +128,7 @@ def choose_tolerance(scene: Scene, verification_sample: int | None = None, execu
                                 names_differ=True))
         else:
             labels, _ = rerun_labels(trial_scene, trial_settings, trial_catalogues, names,
-                                     picks, executor)
+                                     picks, executor, ref_named)
             trials.append(Trial(rtol, trial_settings.atol, int((labels != ref_labels).sum()),
                                 time.perf_counter() - t))
         echo(f"tolerance pilot: rtol {rtol:g}: {_trial_text(trials[-1], picks.size)}")

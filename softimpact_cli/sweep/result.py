@@ -19,7 +19,8 @@ ATTRIBUTES = {
     "contacts": ("contact onsets on the final orbit", "1"),
     "max_penetration": ("max of x1 - x2 - d on the final orbit (>= 0: impacting)", "1"),
     "captured": ("how it was classified: 0 by the repeat of its own section points, 1 by "
-                 "capture near a known stable orbit, 2 by recurrence cells", "1"),
+                 "capture near a known stable orbit, 2 by recurrence cells, 3 followed on "
+                 "the section after the first pass (second stage)", "1"),
     "steps": ("integrator steps, all methods", "1"),
     "stiff_steps": ("steps taken by Rodas4 (the others by the explicit pair)", "1"),
 }

@@ -29,6 +29,7 @@ from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
 from .plan import Plan, chunk_size_for
 from .result import sweep_dataset
+from .second_stage import relabel, unpack
 
 
 def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ...]]:
@@ -132,11 +133,17 @@ def keep_first_orbits(orbits: dict, found: dict) -> None:
             orbits[key] = (flat, pts)
 
 
-def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: dict
-                     ) -> xr.Dataset:
+def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: dict,
+                     recurrent: list | None = None) -> xr.Dataset:
     """The sweep's dataset from its flat arrays (RESULT_FIELDS, plan order) and orbits:
-    labels, the kind's extra variables (``after_sweep``) and the catalogue."""
+    labels, the kind's extra variables (``after_sweep``) and the catalogue. ``recurrent``:
+    the second stage's recurrent trajectories of every chunk (``second_stage.unpack``),
+    named here in flat-index order (``second_stage.relabel``: labels and orbits updated)."""
+    table = relabel(inputs.context, arrays["label"], orbits, recurrent or [],
+                    tuple(scene.system.state_names))
     ds = sweep_dataset(scene, arrays, orbits, inputs.names, inputs.t0_per_sample)
+    if table.data_vars:
+        ds = xr.merge([ds, table], combine_attrs="override", compat="override")
     after = kind_of(scene.analysis.kind).after_sweep  # e.g. the map's solution counts
     if after is not None:
         ds = after(ds, scene, inputs.first)
@@ -188,11 +195,13 @@ def _bad_parts_note(bad: dict[int, str]) -> str:
 
 
 def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
-              ) -> tuple[dict, dict, dict[float, float]]:
-    """(flat arrays, orbits, {session start: its last part written}) from verified parts.
-    A part that fails verification is deleted and DamagedPart names it."""
+              ) -> tuple[dict, dict, dict[float, float], list]:
+    """(flat arrays, orbits, {session start: its last part written}, recurrent
+    trajectories) from verified parts. A part that fails verification is deleted and
+    DamagedPart names it."""
     arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
     orbits: dict = {}
+    recurrent: list = []
     sessions: dict[float, float] = {}
     for index in range(plan.n_chunks):
         start, stop = plan.chunk(index)
@@ -204,9 +213,10 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
         for key in RESULT_FIELDS:
             arrays[key][start:stop] = chunk[key]
         keep_first_orbits(orbits, chunk["orbits"])
+        recurrent += unpack(chunk)
         first, last = float(meta["session_started"]), float(meta["written"])
         sessions[first] = max(sessions.get(first, first), last)
-    return arrays, orbits, sessions
+    return arrays, orbits, sessions, recurrent
 
 
 def run_sweep(scene: Scene, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -321,7 +331,7 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
         if len(store.done() & set(range(plan.n_chunks))) < plan.n_chunks:
             continue
         try:
-            arrays, orbits, sessions = _assemble(store, plan, identity)
+            arrays, orbits, sessions, recurrent = _assemble(store, plan, identity)
             break
         except DamagedPart as why:
             echo(f"{why}; recomputing it")
@@ -330,7 +340,7 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
                           "sweep runs (another program removing them?); run again with "
                           "--resume")
 
-    ds = labelled_dataset(scene, inputs, arrays, orbits)
+    ds = labelled_dataset(scene, inputs, arrays, orbits, recurrent)
     # wall time and start over every session that contributed parts (a session counts
     # until its last part written; this one until now)
     now = time.time()

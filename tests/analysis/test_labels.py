@@ -47,7 +47,8 @@ def test_latex():
 
 
 @pytest.mark.parametrize("bad", ["L1^1 R1-1^2", "L0^1", "L1^1R1-0^2", "impacting", "P3",
-                                 "L2^1 R4-2^1", "chaos"])
+                                 "L2^1 R4-2^1", "chaos", "chaotic A0", "chaotic",
+                                 "impacting chaotic A1000", "quasi periodic A1"])
 def test_bad_labels(bad):
     with pytest.raises(ValueError):
         parse_label(bad)

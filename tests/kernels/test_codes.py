@@ -46,8 +46,8 @@ def test_special_label_codes_are_distinct_negative_and_not_an_orbit_index():
 
 def test_classification_methods_have_names():
     assert set(codes.CLASSIFIED_BY) == {codes.BY_OWN_REPEAT, codes.BY_KNOWN_ORBIT,
-                                        codes.BY_CELLS}
-    assert len(set(codes.CLASSIFIED_BY.values())) == 3
+                                        codes.BY_CELLS, codes.BY_SECTION}
+    assert len(set(codes.CLASSIFIED_BY.values())) == 4
 
 
 @given(st.sampled_from(["impacting", "unmatched"]), st.integers(1, 999))
@@ -65,3 +65,22 @@ def test_catalogue_codes_are_positions_and_names_round_trip(names):
     for i, name in enumerate(names):
         assert code_of(parse_label(name), names) == i
         assert name_of(i, names) == name
+
+
+def test_label_code_ranges_never_overlap():
+    # impacting, unmatched and the four kinds of attractor that is not periodic: each a
+    # disjoint range of BASE_WIDTH codes above every catalogue index and special code
+    bases = sorted([codes.IMPACTING_BASE, codes.UNMATCHED_BASE,
+                    *codes.NONPERIODIC_BASES.values()])
+    assert len(set(bases)) == len(bases)
+    assert all(b - a >= codes.BASE_WIDTH for a, b in zip(bases, bases[1:], strict=False))
+    assert codes.IMPACTING_BASE >= codes.BASE_WIDTH
+
+
+@given(st.sampled_from(sorted(codes.NONPERIODIC_BASES)), st.integers(1, 999))
+def test_nonperiodic_label_codes_round_trip(kind, number):
+    label = parse_label(f"{kind} A{number}")
+    code = code_of(label, ("L1^1",))
+    assert code == codes.NONPERIODIC_BASES[kind] + number
+    assert name_of(code, ("L1^1",)) == label.name == f"{kind} A{number}"
+    assert label.latex == f"{kind} $A_{{{number}}}$"

@@ -34,3 +34,12 @@ def test_outcomes_and_unknown_names_have_stable_colours():
     assert colour_of("impacting P3", ["L1^1"]) == IMPACTING
     assert colour_of("unresolved") == SPECIAL["unresolved"]
     assert colour_of("unmatched P7") == colour_of("unmatched P7", ["L1^1"])
+
+
+def test_attractors_that_are_not_periodic_take_their_own_colours():
+    from softimpact_cli.plot.palette import NOT_PERIODIC
+
+    names = ["chaotic A1", "impacting quasi-periodic A2", "impacting chaotic A3"]
+    colours = [colour_of(n, ["L1^1"]) for n in names]
+    assert colours == NOT_PERIODIC[:3]  # by number, impacting or not: never brown
+    assert not set(colours) & (set(DISTINCT) | {IMPACTING, *SPECIAL.values()})

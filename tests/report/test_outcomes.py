@@ -59,6 +59,7 @@ ranges = [[-12.0, 12.0], [-12.0, 12.0]]
 resolution = [3, 3]
 [integrator]
 max_periods = 5
+section_periods = 0    # the second stage off: nothing resolves
 [catalogue]
 grid = 2
 random = 4
