@@ -1,10 +1,11 @@
 """Session-wide settings: the catalogue cache lives in a temporary folder, never in the
 user's ~/.cache (subprocesses the tests start inherit the variable); hypothesis has no
 per-example deadline (a first example may compile a kernel, and a shared machine's load
-is not a property of the code)."""
+is not a property of the code); SIGINT is not left ignored (see below)."""
 
 import os
 import shutil
+import signal
 import tempfile
 
 from hypothesis import settings
@@ -15,6 +16,14 @@ settings.load_profile("softimpact")
 _CACHE = tempfile.mkdtemp(prefix="softimpact-test-cache-")
 os.environ["SOFTIMPACT_CACHE_DIR"] = _CACHE
 os.environ.pop("SOFTIMPACT_NO_CACHE", None)  # the tests say when they want it off
+
+# A shell starts background jobs with SIGINT ignored when job control is off (`cmd &` in
+# a script), and an ignored signal stays ignored in every process the tests start: the
+# interruption tests would then see no Ctrl-C at all (five failed that way when a CI run
+# was launched in the background). Python's own handler again, inherited as "default" by
+# the subprocesses.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def pytest_unconfigure(config):
