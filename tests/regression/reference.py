@@ -21,10 +21,10 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 STORE = ROOT / "tests" / "data" / "reference"
 
-# Scenes run with other options than --quick. chaos_fig14c_basins: at --quick (24 x 24)
-# about 40% of its starts go through the second stage (4000 periods each) and a
-# verification redo can double that (54 s in a CI run); 16 x 16 without verification
-# guards the same sweep and second stage in 9 s.
+# Scenes run with other options than --quick. chaos_fig14c_basins: about 8% of its starts
+# go through the second stage (42 of 512 at 16 x 16), each for up to 4000 more periods,
+# and its verification redid the sweep in a CI run at --quick (24 x 24: 54 s); 16 x 16
+# without verification guards the same sweep and second stage in 9 s.
 OPTIONS = {"chaos_fig14c_basins": ("--resolution", "16", "--no-verify")}
 
 # (name, scene, extra CLI options)
