@@ -35,6 +35,12 @@ def _open(path: str):
     return open_result(path)
 
 
+# progress lines started by the running command: its end stops their timers, whatever
+# ended it (an error, or a run whose units never reached the total), so that no line is
+# printed after the command, e.g. under CliRunner in the tests' process or a notebook
+_STARTED_LINES: list = []
+
+
 def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
     """A tqdm bar on stderr (points/s, ETA) when it is a terminal, else a line every
     $SOFTIMPACT_PROGRESS_INTERVAL s (default 30, see report/progress.py); returns the callable
@@ -42,7 +48,9 @@ def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
     if not sys.stderr.isatty():
         from .report.progress import ProgressLines
 
-        return ProgressLines(total, initial, unit)
+        lines = ProgressLines(total, initial, unit)
+        _STARTED_LINES.append(lines)
+        return lines
     from tqdm import tqdm
 
     bar = tqdm(total=total, initial=initial, unit="ic", leave=False, smoothing=0.1)
@@ -67,6 +75,9 @@ def _interruptible(func):
                     raise
                 kept = click.get_current_context().meta.get("softimpact.kept")
                 interrupt.exit_interrupted(stop, kept() if kept else "nothing written")
+            finally:
+                while _STARTED_LINES:
+                    _STARTED_LINES.pop().close()
 
     return wrapper
 

@@ -114,30 +114,37 @@ def continue_starts(base: OrbitMap, starts: list[tuple[str, np.ndarray, int]], l
     """Branches through every start ``(name, state (n,), periods)`` at lam0.
 
     Returns (branches, {start name: what became of it}): "traced", "on branch <name>" or
-    "no convergence" (Newton found no periodic orbit near it).
+    "no convergence" (Newton found no periodic orbit near it). ``progress(1)`` is called
+    once per start, whatever became of it.
     """
     branches: list[Branch] = []
     fate: dict[str, str] = {}
     for name, state, periods in starts:
-        orbit_map = base.with_periods(periods)
-        first = start_point(orbit_map, state, lam0, settings.tol)
-        if first is None:
-            fate[name] = "no convergence"
-            continue
-        orbit = orbit_points(orbit_map.problem(lam0), first.state, periods)
-        owner = next((b.name for b in branches for c in b.crossings
-                      if same_cycle(c, orbit, MATCH_TOL)), None)
-        if owner is not None:
-            fate[name] = f"on branch {owner}"
-            continue
-        branch = trace(orbit_map, first, settings, name)
-        branch.crossings = crossings(orbit_map, branch, lam0, settings.tol)
-        branches.append(branch)
-        fate[name] = "traced"
-        _switch(base, branches, len(branches) - 1, settings, switch_depth)
+        fate[name] = _continue_start(base, branches, name, state, periods, lam0, settings,
+                                     switch_depth)
         if progress is not None:
             progress(1)
     return branches, fate
+
+
+def _continue_start(base: OrbitMap, branches: list[Branch], name: str, state: np.ndarray,
+                    periods: int, lam0: float, settings: Settings, switch_depth: int) -> str:
+    """Trace the branch through one start unless it lies on one of ``branches`` (appended
+    to in place, with its period-doubled branches); returns what became of the start."""
+    orbit_map = base.with_periods(periods)
+    first = start_point(orbit_map, state, lam0, settings.tol)
+    if first is None:
+        return "no convergence"
+    orbit = orbit_points(orbit_map.problem(lam0), first.state, periods)
+    owner = next((b.name for b in branches for c in b.crossings
+                  if same_cycle(c, orbit, MATCH_TOL)), None)
+    if owner is not None:
+        return f"on branch {owner}"
+    branch = trace(orbit_map, first, settings, name)
+    branch.crossings = crossings(orbit_map, branch, lam0, settings.tol)
+    branches.append(branch)
+    _switch(base, branches, len(branches) - 1, settings, switch_depth)
+    return "traced"
 
 
 def _switch(base: OrbitMap, branches: list[Branch], index: int, settings: Settings,
