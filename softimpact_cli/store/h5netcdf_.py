@@ -27,6 +27,9 @@ import xarray as xr
 from ..config import ConfigError
 from .lock import output_lock
 from .provenance import command_line
+from .xarray_dask import install as _lazy_dask
+
+_lazy_dask()  # writing a file imports no dask while none is in use (xarray_dask.py)
 
 ENGINE = "h5netcdf"
 CONVENTIONS = "CF-1.10"
