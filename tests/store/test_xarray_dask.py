@@ -60,3 +60,32 @@ def test_install_is_idempotent_and_keeps_plain_arrays_plain():
     install()
     v = xr.Variable("x", np.arange(3))
     assert v.chunks is None and isinstance(v.data, np.ndarray)
+
+
+def test_update_attributes_gives_the_file_write_result_would(tmp_path):
+    """store.update_attributes (the verification's last write): same variables, same
+    attributes in the same order and types, h5netcdf's hidden ones included."""
+    import h5py
+    import xarray as xr
+
+    from softimpact_cli.store import update_attributes, write_result
+
+    ds = xr.Dataset({"a": ("x", np.arange(2000.0)), "s": ("y", np.array(["p", "q"]))},
+                    coords={"x": np.arange(2000)})
+    ds.attrs.update({"n": 3, "name": "before", "flag": True, "status": "pending"})
+    written = dict(ds.attrs)
+    write_result(ds, tmp_path / "fast.h5")
+    ds.attrs.update({"status": "verified", "share": 0.25, "history": "[1, 2]"})
+    update_attributes(tmp_path / "fast.h5", written, ds.attrs)
+    write_result(ds, tmp_path / "whole.h5")
+
+    def attributes(path):
+        with h5py.File(path) as f:
+            return [(k, str(f.attrs.get_id(k).dtype), np.asarray(f.attrs[k]).tolist())
+                    for k in f.attrs]
+
+    assert attributes(tmp_path / "fast.h5") == attributes(tmp_path / "whole.h5")
+    fast = xr.open_dataset(tmp_path / "fast.h5", engine="h5netcdf").load()
+    xr.testing.assert_identical(fast, xr.open_dataset(tmp_path / "whole.h5",
+                                                      engine="h5netcdf").load())
+    assert not list(tmp_path.glob("*.partial"))
