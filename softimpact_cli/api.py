@@ -138,7 +138,9 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     records "not verified (disabled by --no-verify)".
     """
     from .kinds import get as kind_of
+    from .store.xarray_dask import install
 
+    install()  # no dask imported for datasets that hold none (store/xarray_dask.py)
     _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
     kind = kind_of(sc.analysis.kind)
@@ -200,7 +202,9 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     """
     from .kinds import SWEEP_KINDS
     from .kinds import get as kind_of
+    from .store.xarray_dask import install
 
+    install()  # no dask imported for datasets that hold none (store/xarray_dask.py)
     _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
     target = result_path(sc, None if out is None else str(out))

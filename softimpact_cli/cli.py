@@ -5,7 +5,9 @@ Every error a user can cause ends with one line on stderr and exit status 2.
 
 from __future__ import annotations
 
+import atexit
 import functools
+import gc
 import json
 import sys
 from pathlib import Path
@@ -113,10 +115,29 @@ def _check_rk4_step(scene, strict: bool) -> None:
             return
 
 
+def _quick_exit() -> None:
+    """Freeze the garbage collector when the interpreter exits (once per process).
+
+    At exit CPython clears every module and runs full collections over what is left:
+    with numba's, xarray's and pandas' objects that took 0.5 s of a 3 s `softimpact
+    sweep` (a quarter of a small command). Frozen objects are skipped by those
+    collections; they are still freed by reference counting, the atexit handlers
+    registered before this one still run, and what is written (results, chunks, cache
+    entries) is closed and fsynced before the command returns, never left to a finalizer.
+    """
+    if not _QUICK_EXIT:
+        atexit.register(gc.freeze)
+        _QUICK_EXIT.append(True)
+
+
+_QUICK_EXIT: list = []
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="softimpact")
 def main():
     """softimpact: multistability of oscillators coupled through soft impacts."""
+    _quick_exit()
 
 
 def _scheduler(ctx, param, value):

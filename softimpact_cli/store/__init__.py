@@ -3,7 +3,7 @@
 Only this package imports h5py / h5netcdf.
 """
 
-from .h5netcdf_ import add_attributes, open_result, write_result
+from .h5netcdf_ import add_attributes, open_result, update_attributes, write_result
 from .provenance import provenance
 
-__all__ = ["add_attributes", "open_result", "provenance", "write_result"]
+__all__ = ["add_attributes", "open_result", "provenance", "update_attributes", "write_result"]

@@ -317,7 +317,7 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
     """Run (or resume) the sweep ``scene`` into ``out`` and verify it (``verify`` False, or
     [verification] enabled = false: recorded as not verified). ``run_options`` go to
     ``run_sweep`` (workers, scheduler, overwrite, chunk_size, progress)."""
-    from ..store import add_attributes, write_result
+    from ..store import add_attributes, update_attributes, write_result
     from ..store.lock import output_lock
     from ..store.provenance import command_line
     from .executors import make_executor
@@ -357,7 +357,11 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
             return run_sweep(tighter, path, resume=resume and SweepStore(path).exists(),
                              overwrite=True, echo=echo, **options)
 
+        written, attrs = ds, dict(ds.attrs)  # what ``out`` holds now
         ds = verify_sweep(scene, ds, redo, sample, executor, echo)
-        write_result(ds, out)
+        if ds is written:  # not redone: only the verify_* attributes are new
+            update_attributes(out, attrs, ds.attrs)
+        else:
+            write_result(ds, out)
         remove_redo_files(out)
     return ds
