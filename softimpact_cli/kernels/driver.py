@@ -220,18 +220,18 @@ def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, c
                 continue
             h_next, rejected = next_step(err, c, h_step, h, rejected, truncated), False
             dense(y, h_step, work, v)
-            u, mask = -1.0, 0
+            u, mask, held = -1.0, 0, -1
             if locate and A_s.shape[0] > 0:
-                u, mask = earliest_exit(work, A_s, b_s, relevance, mode, coef)
+                u, mask, held = earliest_exit(work, A_s, b_s, relevance, mode, coef)
             if mask != 0:  # redo the step up to the crossing; the proposal stands
-                h_full, h_next, truncated = h_step, h, False
+                h_full, h_next, truncated, held = h_step, h, False, -1
                 h_step = redo(rhs, p, t, y, u * h_step, h_full, surfaces, mask, state,
                               (stage_A, stage_b))
                 if h_step < 0.0:
                     return STEP_UNDERFLOW
             if h_step > 0.0:  # (a grazing restart takes no step)
                 if locate:
-                    track_contact(work, A_s, b_s, contact, fstate, coef)
+                    track_contact(work, A_s, b_s, contact, fstate, coef, held)
                 write_samples(work, t, h_step, opts, istate, sample_t, sample_y)
                 change, need_first = accept(y, h_step, h_next, work, istate, v)
                 istate[N_STEPS] += 1
@@ -296,14 +296,15 @@ def fixed_loop(name, begin, step, dense, accept):
             _, evals = step(rhs, p, t, y, h, mode, stage_A, stage_b, work, 0)
             istate[N_RHS] += evals
             dense(y, h, work, 0)
-            u, mask = -1.0, 0
+            u, mask, held = -1.0, 0, -1
             if locate and A_s.shape[0] > 0:
-                u, mask = earliest_exit(work, A_s, b_s, relevance, mode, coef)
+                u, mask, held = earliest_exit(work, A_s, b_s, relevance, mode, coef)
             if mask != 0:
-                h = redo(rhs, p, t, y, u * h, h, surfaces, mask, state, (stage_A, stage_b))
+                h, held = redo(rhs, p, t, y, u * h, h, surfaces, mask, state,
+                               (stage_A, stage_b)), -1
             if h > 0.0:  # (a grazing restart takes no step)
                 if locate:
-                    track_contact(work, A_s, b_s, contact, fstate, coef)
+                    track_contact(work, A_s, b_s, contact, fstate, coef, held)
                 write_samples(work, t, h, opts, istate, sample_t, sample_y)
                 accept(y, h, h, work, istate, 0)
                 istate[N_STEPS] += 1
