@@ -112,12 +112,13 @@ def stopped_at_switch(fstate, t, h_next):
 @njit(cache=True, inline="always")
 def borrowed(p, y, opts, surfaces, state, samples):
     """A loop's arrays without reference counting (``borrow``: the loop's caller holds
-    them for the whole call): p, y, opts, A, b, relevance, istate, fstate, work,
-    sample_t, sample_y."""
-    (A_s, b_s, relevance, _), (istate, fstate, work), (sample_t, sample_y) = \
+    them for the whole call): (p, y, opts), surfaces, state, samples."""
+    (A_s, b_s, relevance, contact), (istate, fstate, work), (sample_t, sample_y) = \
         surfaces, state, samples
-    return (borrow(p), borrow(y), borrow(opts), borrow(A_s), borrow(b_s), borrow(relevance),
-            borrow(istate), borrow(fstate), borrow(work), borrow(sample_t), borrow(sample_y))
+    return ((borrow(p), borrow(y), borrow(opts)),
+            (borrow(A_s), borrow(b_s), borrow(relevance), contact),
+            (borrow(istate), borrow(fstate), borrow(work)),
+            (borrow(sample_t), borrow(sample_y)))
 
 
 @njit(cache=True, inline="always")
@@ -194,9 +195,8 @@ def adaptive_loop(name, begin, step, error, controller, dense, refine, accept, c
     @_jit_as(name)
     def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
         """Integrate ``y`` in place from ``t`` to exactly ``t_end``; a status code."""
-        p, y, opts, A_s, b_s, relevance, istate, fstate, work, sample_t, sample_y = \
-            borrowed(p, y, opts, surfaces, state, samples)
-        contact = surfaces[3]
+        (p, y, opts), (A_s, b_s, relevance, contact), (istate, fstate, work), \
+            (sample_t, sample_y) = borrowed(p, y, opts, surfaces, state, samples)
         locate = opts[LOCATE] != 0.0
         stage_A, stage_b = stage_surfaces(A_s, b_s, locate)
         coef = np.empty(5)
@@ -274,9 +274,8 @@ def fixed_loop(name, begin, step, dense, accept):
     @_jit_as(name)
     def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
         """Integrate ``y`` in place from ``t`` to exactly ``t_end``; a status code."""
-        p, y, opts, A_s, b_s, relevance, istate, fstate, work, sample_t, sample_y = \
-            borrowed(p, y, opts, surfaces, state, samples)
-        contact = surfaces[3]
+        (p, y, opts), (A_s, b_s, relevance, contact), (istate, fstate, work), \
+            (sample_t, sample_y) = borrowed(p, y, opts, surfaces, state, samples)
         locate = opts[LOCATE] != 0.0
         stage_A, stage_b = stage_surfaces(A_s, b_s, locate)
         coef = np.empty(5)
