@@ -9,11 +9,13 @@ from .switching import mode_of, poly, poly_max, surface_polynomial, surface_valu
 
 
 @njit(cache=True, inline="always")
-def track_contact(work, A, b, contact, fstate, coef):
-    """Raise the running max of the contact function with this step's dense output."""
+def track_contact(work, A, b, contact, fstate, coef, held):
+    """Raise the running max of the contact function with this step's dense output
+    (``coef`` already holds its polynomial when ``held`` is ``contact``)."""
     if contact < 0:
         return
-    surface_polynomial(work, A, b, contact, coef)
+    if held != contact:
+        surface_polynomial(work, A, b, contact, coef)
     # The exact max needs the critical points (root finding); most steps need less, with
     # the same running max bit for bit. On [0, 1], c_k u^k <= max(c_k, 0): a step that
     # cannot raise the max is skipped. |g'(u) - c1| <= 2|c2| + 3|c3| + 4|c4|: where that

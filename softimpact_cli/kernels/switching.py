@@ -228,15 +228,19 @@ def poly_max(coef, u_end):
 def earliest_exit(work, A, b, relevance, mode, coef):
     """Earliest exit fraction among watched surfaces, and the mask of surfaces exiting there.
 
-    Returns (u, mask); u = -1 when the step stays in its mode.
+    Returns (u, mask, held); u = -1 when the step stays in its mode; ``coef`` is left
+    holding the polynomial of surface ``held`` (the last watched one; -1: none), which
+    ``common.track_contact`` then need not compute again.
     """
     watched = relevance[mode]
     best = 2.0
     mask = 0
+    held = -1
     for i in range(A.shape[0]):
         if not (watched >> i) & 1:
             continue
         surface_polynomial(work, A, b, i, coef)
+        held = i
         u = first_exit(coef, (mode >> i) & 1)
         if u < 0.0:
             continue
@@ -246,8 +250,8 @@ def earliest_exit(work, A, b, relevance, mode, coef):
         elif u <= best + 1e-12:
             mask |= 1 << i
     if mask == 0:
-        return -1.0, 0
-    return best, mask
+        return -1.0, 0, held
+    return best, mask, held
 
 
 @njit(cache=True)
