@@ -245,6 +245,8 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         raise ConfigError(f"{source}: [integrator] cell_size: recurrence cells hold states of "
                           f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
                           "use cell_size = 0")
+    if integrator.resolved_method == "exact":
+        _check_exact(source, system, values, integrator)
     period = 2.0 * math.pi / values["w"]
     ctx = SceneContext(source, doc, system, values, period,
                        lambda axis, v: _check_axis(system, axis, v, period))
@@ -258,6 +260,19 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
                  sections={k: dict(v) for k, v in doc.items()}, grid=grid,
                  initial_conditions=initial, catalogue=catalogue,
                  verification=_read_verification(source, doc, analysis.kind))
+
+
+def _check_exact(source: str, system, values, integrator: IntegratorSettings) -> None:
+    """Method 'exact' integrates piecewise-linear systems only, switches located."""
+    from ..systems.piecewise_linear import exact_refusal
+
+    if not integrator.locate_switches:
+        raise ConfigError(f"{source}: [integrator] method = \"exact\" locates every switch; "
+                          "locate_switches = false is for rk4 (the study's plain scheme)")
+    why = exact_refusal(system, system.pack(values)) if system.piecewise_linear else (
+        f"the {system.model} model is not piecewise linear")
+    if why is not None:
+        raise ConfigError(f"{source}: [integrator] method = \"exact\": {why}; use \"auto\"")
 
 
 def _read_verification(source: str, doc: dict, kind: str) -> VerificationSettings | None:
