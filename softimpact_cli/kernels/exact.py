@@ -221,13 +221,16 @@ def hermite_guess(f_lo, r_lo, f_hi, r_hi, span):
 
 
 @njit(cache=True)
-def newton_on_quarter(G, A, b, i, sign, buf, start, lo, hi, f_lo, f_hi, of_rate, x):
-    """The root in (lo, hi) of ``sign g`` (``of_rate`` False) or of ``sign g'`` (True) along
-    the flow from node row ``start``, given its values ``f_lo >= 0 > f_hi`` (or the
-    reverse) at the bracket's ends, from the guess ``x`` (outside the bracket: the
-    secant's). Leaves the flow at the root in row FLOW. A root of g is found to rounding;
+def newton_on_quarter(G, surface, buf, start, bracket, of_rate, x):
+    """The root in ``bracket = (lo, hi, f_lo, f_hi)`` of ``sign g_i`` (``of_rate`` False) or
+    of ``sign g_i'`` (True), ``surface = (A, b, i, sign)``, along the flow from node row
+    ``start``, given its values ``f_lo >= 0 > f_hi`` (or the reverse) at the ends, from
+    the guess ``x`` (outside the bracket: the secant's). Leaves the flow at the root in
+    row FLOW. A root of g is found to rounding;
     one of g' (an extremum) to EXTREMUM_TOL of the bracket, which puts g there within
     rounding of its extreme value (g is flat at the root of g')."""
+    A, b, i, sign = surface
+    lo, hi, f_lo, f_hi = bracket
     x_tol = EXTREMUM_TOL * (hi - lo) if of_rate else 0.0
     if not (lo < x < hi):
         x = lo + f_lo * (hi - lo) / (f_lo - f_hi) if f_lo != f_hi else 0.5 * (lo + hi)
@@ -279,27 +282,27 @@ def first_exit(G, A, b, i, sign, buf, times, last):
         if q == 1 and on_surface and h_q < 0.0 and r_prev > 0.0 > r_q:
             # a restart on the surface that rises into its mode's side and comes back
             # within the quarter: the exit is after the maximum, not the start's residual
-            x_max = newton_on_quarter(G, A, b, i, sign, buf, NODES, 0.0, span, r_prev, r_q,
-                                      True, -1.0)
+            x_max = newton_on_quarter(G, (A, b, i, sign), buf, NODES,
+                                      (0.0, span, r_prev, r_q), True, -1.0)
             h_max = sign * surface_at(A, b, i, buf, FLOW)
             if h_max > 0.0:
-                x = newton_on_quarter(G, A, b, i, sign, buf, NODES, x_max, span, h_max, h_q,
-                                      False, -1.0)
+                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES,
+                                      (x_max, span, h_max, h_q), False, -1.0)
                 return x
         if h_q < 0.0:
             guess = hermite_guess(h_prev, r_prev, h_q, r_q, span)
-            x = newton_on_quarter(G, A, b, i, sign, buf, NODES + q - 1, 0.0, span, h_prev,
-                                  h_q, False, guess)
+            x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+                                  (0.0, span, h_prev, h_q), False, guess)
             return times[q - 1] + x
         if r_prev < 0.0 < r_q and tangents_meet(h_prev, r_prev, h_q, r_q, span) <= 0.0:
             # a minimum of sign g inside that may lie beyond the surface
-            x_min = newton_on_quarter(G, A, b, i, sign, buf, NODES + q - 1, 0.0, span,
-                                      r_prev, r_q, True, -1.0)
+            x_min = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+                                      (0.0, span, r_prev, r_q), True, -1.0)
             h_min = sign * surface_at(A, b, i, buf, FLOW)
             if h_min < 0.0:
-                x = newton_on_quarter(G, A, b, i, sign, buf, NODES + q - 1, 0.0, x_min,
-                                      h_prev, h_min, False, hermite_guess(
-                                          h_prev, r_prev, h_min, 0.0, x_min))
+                guess = hermite_guess(h_prev, r_prev, h_min, 0.0, x_min)
+                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+                                      (0.0, x_min, h_prev, h_min), False, guess)
                 return times[q - 1] + x
         h_prev, r_prev = h_q, r_q
     return NO_ROOT
@@ -320,8 +323,8 @@ def contact_maximum(G, A, b, i, buf, times, last, end, known):
         floor = max(best, known)
         span = times[q] - times[q - 1]
         if r_prev > 0.0 > r_q and tangents_meet(g_prev, r_prev, g_q, r_q, span) > floor:
-            x = newton_on_quarter(G, A, b, i, 1.0, buf, NODES + q - 1, 0.0, span, r_prev,
-                                  r_q, True, -1.0)
+            x = newton_on_quarter(G, (A, b, i, 1.0), buf, NODES + q - 1,
+                                  (0.0, span, r_prev, r_q), True, -1.0)
             if times[q - 1] + x <= end:
                 best = max(best, surface_at(A, b, i, buf, FLOW))
         g_prev, r_prev = g_q, r_q
@@ -407,6 +410,57 @@ def write_exact_samples(G, buf, times, last, t, end, opts, istate, sample_t, sam
 
 
 @njit(cache=True)
+def step_nodes(p, at, y, t, h, buf, times):
+    """The nodes of a step of ``h`` from (t, y) in the mode packed at ``at``, their rates
+    and times; returns the number of segments."""
+    base = block_start(p)
+    aug = int(p[base + 1])
+    w = p[base + 2]
+    dim = y.shape[0]
+    h_mode = p[at]
+    G = p[at + 1: at + 1 + aug * aug].reshape((aug, aug))
+    Q = p[at + 1 + aug * aug: at + 1 + 2 * aug * aug].reshape((aug, aug))
+    for i in range(dim):
+        buf[NODES, i] = y[i]
+    buf[NODES, dim] = sin(w * t)
+    buf[NODES, dim + 1] = cos(w * t)
+    buf[NODES, dim + 2] = 1.0
+    times[0] = 0.0
+    if abs(h - h_mode) > 1e-6 * h_mode:
+        return partial_nodes(Q, G, buf, 0.25 * h_mode, h, times)
+    quarter_nodes(Q, G, buf, h - h_mode)
+    for q in range(1, 4):
+        times[q] = 0.25 * q * h_mode
+    times[4] = h
+    return 4
+
+
+@njit(cache=True)
+def earliest_crossing(G, surfaces, mode, buf, times, last, work):
+    """The earliest time a watched surface is crossed in the step, and the mask of every
+    surface crossed then ((2 * step, 0): none); the state there into ``work[0]``."""
+    A_s, b_s, relevance, _ = surfaces
+    dim = A_s.shape[1]
+    watched = relevance[mode]
+    h = times[last]
+    best, mask = 2.0 * h, 0
+    for i in range(A_s.shape[0]):
+        if not (watched >> i) & 1:
+            continue
+        sign = 1.0 if (mode >> i) & 1 else -1.0
+        x = first_exit(G, A_s, b_s, i, sign, buf, times, last)
+        if x == NO_ROOT:
+            continue
+        if x < best - 1e-14 * h:
+            best, mask = x, 1 << i
+            for j in range(dim):
+                work[0, j] = buf[FLOW, j]  # the state on the surface
+        elif x <= best + 1e-14 * h:
+            mask |= 1 << i
+    return best, mask
+
+
+@njit(cache=True)
 def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
     """Integrate ``y`` in place from ``t`` to exactly ``t_end`` on the modes' exact flow;
     a status code (see ``driver`` for the conventions; switches are always located)."""
@@ -416,7 +470,6 @@ def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
     dim = y.shape[0]
     base = block_start(p)
     aug = int(p[base + 1])
-    w = p[base + 2]
     buf = np.empty((SCRATCH_ROWS, aug))
     times = np.empty(5)
     sampling = opts[SAMPLE_DT] > 0.0
@@ -430,45 +483,15 @@ def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
         remaining = t_end - t
         landing = remaining <= h_mode * (1.0 + 1e-6)
         h = remaining if landing else h_mode
-        for i in range(dim):
-            buf[NODES, i] = y[i]
-        buf[NODES, dim] = sin(w * t)
-        buf[NODES, dim + 1] = cos(w * t)
-        buf[NODES, dim + 2] = 1.0
-        Q = p[at + 1 + aug * aug: at + 1 + 2 * aug * aug].reshape((aug, aug))
-        times[0] = 0.0
-        if abs(h - h_mode) <= 1e-6 * h_mode:
-            quarter_nodes(Q, G, buf, h - h_mode)
-            for q in range(1, 4):
-                times[q] = 0.25 * q * h_mode
-            times[4] = h
-            last = 4
-        else:
-            last = partial_nodes(Q, G, buf, 0.25 * h_mode, h, times)
-        # the earliest watched surface crossed, and every surface crossed then
-        watched = relevance[mode]
-        best, mask = 2.0 * h, 0
-        for i in range(A_s.shape[0]):
-            if not (watched >> i) & 1:
-                continue
-            sign = 1.0 if (mode >> i) & 1 else -1.0
-            x = first_exit(G, A_s, b_s, i, sign, buf, times, last)
-            if x == NO_ROOT:
-                continue
-            if x < best - 1e-14 * h:
-                best, mask = x, 1 << i
-                for j in range(dim):
-                    work[0, j] = buf[FLOW, j]  # the state on the surface
-            elif x <= best + 1e-14 * h:
-                mask |= 1 << i
+        last = step_nodes(p, at, y, t, h, buf, times)
+        best, mask = earliest_crossing(G, surfaces, mode, buf, times, last, work)
         end = best if mask != 0 else h
         if contact >= 0:
             g_max = contact_maximum(G, A_s, b_s, contact, buf, times, last, end,
                                     fstate[MAX_G])
-            if mask != 0:
+            if mask != 0:  # (the step ends on a surface: g there counts too)
                 g_max = max(g_max, surface_at(A_s, b_s, contact, work, 0))
-            if g_max > fstate[MAX_G]:
-                fstate[MAX_G] = g_max
+            fstate[MAX_G] = max(fstate[MAX_G], g_max)
         if end > 0.0:  # (a grazing restart, leaving right at the start, takes no step)
             if sampling:
                 write_exact_samples(G, buf, times, last, t, end, opts, istate, sample_t,
