@@ -49,6 +49,8 @@ CANDIDATES = {  # name -> [integrator] keys over the defaults
     "auto 1e-9": dict(rtol=1e-9, atol=1e-11),
     "convergence 1e-9": dict(convergence_tol=1e-9),
     "dopri5 1e-8": dict(method="dopri5"),
+    "exact": dict(method="exact"),
+    "exact without cells": dict(method="exact", cell_size=0.0),
 }
 SPREAD = {  # tighter than the reference still
     "rtol 1e-12": dict(rtol=1e-12, atol=1e-14),

@@ -17,6 +17,7 @@ from ..config import IntegratorSettings
 from ..kernels import METHODS, cells, layout, orbit
 from ..kernels.codes import CONVERGED, MIXED_CELL, NO_ORBIT, outcome
 from ..systems import Surfaces, System
+from ..systems.piecewise_linear import with_exact_block
 
 # istate[:layout.N_COUNTERS]; "stiff_steps" are the Rodas4 steps (the others explicit),
 # "method_switches" the changes of method within `auto`
@@ -38,7 +39,13 @@ class Problem:
     integrator: IntegratorSettings = field(default_factory=IntegratorSettings)
 
     def __post_init__(self):
-        object.__setattr__(self, "params", self.system.pack(self.values))
+        params = self.system.pack(self.values)
+        if self.integrator.resolved_method == "exact":
+            if self.system.variational:  # its fundamental matrix: an explicit method
+                object.__setattr__(self, "integrator", replace(self.integrator, method="dopri5"))
+            else:  # the modes' flows travel behind the parameters (kernels/exact.py)
+                params = with_exact_block(self.system, params)
+        object.__setattr__(self, "params", params)
         object.__setattr__(self, "surfaces", self.system.surfaces(self.params))
 
     params: np.ndarray = field(init=False, repr=False, compare=False)

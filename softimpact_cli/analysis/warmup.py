@@ -151,6 +151,8 @@ def _steps(model: str | None = None) -> list:
         steps.append((f"{name} {kind}: rk4 step check",
                       lambda s=system: rk4_step_warning(Problem(s, s.defaults()))))
         for method in METHODS:
+            if method == "exact" and not system.piecewise_linear:
+                continue
             steps.append((f"{name} {kind}: {method}", lambda s=system, m=method: run_system(s, m)))
         if bodies == 1:
             steps.append((f"{name} catalogue (Newton, variational equations)",

@@ -245,6 +245,9 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         raise ConfigError(f"{source}: [integrator] cell_size: recurrence cells hold states of "
                           f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
                           "use cell_size = 0")
+    integrator = _default_method(doc, system, values, integrator)
+    if integrator.resolved_method == "exact":
+        _check_exact(source, system, values, integrator)
     period = 2.0 * math.pi / values["w"]
     ctx = SceneContext(source, doc, system, values, period,
                        lambda axis, v: _check_axis(system, axis, v, period))
@@ -258,6 +261,35 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
                  sections={k: dict(v) for k, v in doc.items()}, grid=grid,
                  initial_conditions=initial, catalogue=catalogue,
                  verification=_read_verification(source, doc, analysis.kind))
+
+
+def _default_method(doc: dict, system, values, integrator: IntegratorSettings
+                    ) -> IntegratorSettings:
+    """A scene that names no method and no tolerance integrates a piecewise-linear system
+    (the bilinear models with a linear stop law) on its exact flow, else with "auto"."""
+    chosen = doc.get("integrator", {})
+    if any(k in chosen for k in ("method", "rtol", "atol")) or not integrator.locate_switches:
+        return integrator
+    if not system.piecewise_linear:
+        return integrator
+    from ..systems.piecewise_linear import exact_refusal
+
+    if exact_refusal(system, system.pack(values)) is not None:
+        return integrator
+    return replace(integrator, method="exact")
+
+
+def _check_exact(source: str, system, values, integrator: IntegratorSettings) -> None:
+    """Method 'exact' integrates piecewise-linear systems only, switches located."""
+    from ..systems.piecewise_linear import exact_refusal
+
+    if not integrator.locate_switches:
+        raise ConfigError(f"{source}: [integrator] method = \"exact\" locates every switch; "
+                          "locate_switches = false is for rk4 (the study's plain scheme)")
+    why = exact_refusal(system, system.pack(values)) if system.piecewise_linear else (
+        f"the {system.model} model is not piecewise linear")
+    if why is not None:
+        raise ConfigError(f"{source}: [integrator] method = \"exact\": {why}; use \"auto\"")
 
 
 def _read_verification(source: str, doc: dict, kind: str) -> VerificationSettings | None:

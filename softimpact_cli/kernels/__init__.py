@@ -19,7 +19,9 @@ from .numba_cache import source_keyed_cache, stabilise
 
 # method name -> its module; "auto" switches between dopri5's and rodas4's steps per step
 # and per contact mode. The order is the order scenes list them in (the default first).
-METHOD_MODULES = {"auto": "auto", "rk4": "rk4", "dopri5": "dopri5", "rodas4": "rosenbrock"}
+# "exact" is the closed-form flow of piecewise-linear systems (bilinear, linear stop laws).
+METHOD_MODULES = {"auto": "auto", "rk4": "rk4", "dopri5": "dopri5", "rodas4": "rosenbrock",
+                  "exact": "exact"}
 ALIASES = {"stiff": "rodas4"}  # other names a scene may use
 
 _SHARED = ("cells", "codes", "common", "control", "dense", "driver", "layout", "linalg",

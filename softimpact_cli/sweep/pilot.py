@@ -73,6 +73,8 @@ def skip_reason(scene: Scene, total: int) -> str | None:
         return f"[integrator] {' and '.join(by_hand)} set by hand"
     if scene.integrator.resolved_method == "rk4":
         return "fixed-step rk4 has no tolerance"
+    if scene.integrator.resolved_method == "exact":
+        return "the exact flow has no tolerance"
     if not [r for r in CANDIDATES if r > scene.integrator.rtol]:
         return f"no candidate looser than rtol {scene.integrator.rtol:g}"
     if total < MIN_TOTAL_RATIO * settings.pilot_sample:

@@ -151,6 +151,10 @@ class System:
     pack: Callable[[Mapping[str, float]], np.ndarray]
     surfaces: Callable[[np.ndarray], Surfaces]
     forcing_frequency_index: int = 4
+    # affine in the state in every mode for the linear stop laws (method 'exact' can
+    # integrate it; systems/piecewise_linear.py checks each mode)
+    piecewise_linear: bool = False
+    variational: bool = False  # the state and its fundamental matrix (variational.py)
     # For a pair: the right body's solutions are right_sign * x_left(t + (phi - right_phase)/w)
     # (a time shift for identical bodies; a mirror and a half-period shift for mirrored ones).
     extra: Mapping[str, object] = field(default_factory=dict)

@@ -149,6 +149,7 @@ BILINEAR_BODY = System(
     pack=pack_body,
     surfaces=body_surfaces,
     extra={"catalogue_box": CATALOGUE_BOX},
+    piecewise_linear=True,
 )
 
 BILINEAR_PAIR = System(
@@ -163,4 +164,5 @@ BILINEAR_PAIR = System(
     surfaces=pair_surfaces,
     extra={"catalogue_box": CATALOGUE_BOX, "laws": tuple(stops.LAWS), "right_sign": -1.0,
            "right_phase": np.pi},
+    piecewise_linear=True,  # with a linear stop law
 )

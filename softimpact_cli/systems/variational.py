@@ -112,6 +112,7 @@ def _build(system: System) -> System:
 
     names = system.state_names + tuple(f"Phi{i}{j}" for i in range(n) for j in range(n))
     return replace(system, state_names=names, rhs=variational_rhs(system), surfaces=surfaces,
+                   piecewise_linear=False, variational=True,
                    description=system.description + " (with variational equations)")
 
 

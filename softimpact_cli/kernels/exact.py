@@ -1,0 +1,521 @@
+"""exact: the closed-form flow of a piecewise-linear system between its switches.
+
+In every mode m of a piecewise-linear system with harmonic forcing (the bilinear bodies
+and pair with a linear stop law),
+
+    y' = M_m y + b_m + u_m sin(w t) + v_m cos(w t),
+
+and with the augmented state ``Y = (y, sin w t, cos w t, 1)`` this is ``Y' = G_m Y``: the
+flow over any time tau is ``exp(G_m tau) Y``, with no truncation error. The method steps
+with that flow, so what is left is rounding and the location of the switches, which
+Newton's method on the flow itself makes exact to rounding too. ``rtol`` and ``atol`` do
+not apply.
+
+``systems.piecewise_linear`` packs the modes' data behind the system's parameters (the
+rhs reads only its own leading entries): ``p[-1]`` is where the block starts, holding
+``n_modes, aug, w`` and per mode its step ``h_m``, ``G_m`` and the quarter propagator
+``exp(G_m h_m / 4)`` (row-major). ``h_m`` turns the fastest mode of ``G_m`` by at most
+STEP_PHASE rad (and is at most T / 8), so a quarter step turns it by at most 0.5 rad.
+
+A step is four quarter steps; at the five nodes the switching functions ``g = A y + b``
+and their rates ``g' = A y'`` are exact. A watched surface is crossed in a quarter when
+``g`` changes side between its nodes, or when ``g'`` changes sign inside it (an
+extremum) and ``g`` there is beyond the surface (a grazing excursion): within a quarter
+of 0.5 rad ``g'`` changes sign at most once for any solution that is not contrived. The
+crossing (and the extremum) is found by safeguarded Newton iterations on the flow from
+the quarter's first node, evaluated by its Taylor series (the quarter is short, so the
+series converges fast). The contact function's running maximum and dense samples are
+exact in the same way. A step shorter than ``h_m`` (landing on ``t_end`` after a switch
+moved the grid) takes its whole quarters with the propagator and the rest by the Taylor
+series, so it has up to four segments of unequal length.
+
+Counters: ``N_STEPS`` counts steps; no right-hand side is evaluated (``N_RHS`` stays).
+"""
+
+from math import cos, sin
+
+import numpy as np
+from numba import njit
+
+from .codes import DIVERGED, OK, STEP_BUDGET
+from .common import apply_switch, out_of_bounds
+from .driver import stopped_at_switch
+from .layout import (
+    BOUND,
+    MAX_G,
+    MAX_STEPS,
+    MAX_SWITCHES,
+    MODE,
+    N_SAMPLES,
+    N_STEPS,
+    SAMPLE_DT,
+    SAMPLE_T0,
+    H,
+)
+
+HEADER = 3  # n_modes, aug, w
+STEP_PHASE = 2.0  # rad the fastest mode turns in one step (systems.piecewise_linear)
+TAYLOR_TERMS = 60
+NEWTON_ITERATIONS = 60
+EXTREMUM_TOL = 1e-9  # of a quarter: the value at an extremum is then exact to ~1e-18
+NO_ROOT = -1.0
+# rows of the scratch buffer: five nodes, their rates, the flow's state, its rate, a term
+NODES, RATES, FLOW, FLOW_RATE, TERM, TMP = 0, 5, 10, 11, 12, 13
+SCRATCH_ROWS = 14
+
+
+# ---------------------------------------------------------------------------------------
+# the packed modes
+
+
+@njit(cache=True)
+def block_start(p):
+    return int(p[p.shape[0] - 1])
+
+
+@njit(cache=True)
+def mode_offset(p, base, mode):
+    """Where mode ``mode``'s ``h_m`` sits in ``p``; G follows, then the quarter propagator."""
+    aug = int(p[base + 1])
+    return base + HEADER + mode * (1 + 2 * aug * aug)
+
+
+# ---------------------------------------------------------------------------------------
+# matrix exponentials
+
+
+@njit(cache=True)
+def expm(G, tau, out, a, b):
+    """``out = exp(G tau)`` ((n, n) arrays; ``a``, ``b`` scratch of the same shape): the
+    Taylor series of the scaled matrix to rounding, then repeated squaring."""
+    n = G.shape[0]
+    norm = 0.0
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += abs(G[i, j])
+        norm = max(norm, s)
+    norm *= abs(tau)
+    squarings = 0
+    while norm > 0.25 and squarings < 64:
+        norm *= 0.5
+        squarings += 1
+    scale = tau / 2.0**squarings
+    for i in range(n):
+        for j in range(n):
+            a[i, j] = G[i, j] * scale
+            out[i, j] = a[i, j] + (1.0 if i == j else 0.0)
+    for k in range(2, 30):
+        biggest = 0.0
+        for i in range(n):
+            for j in range(n):
+                s = 0.0
+                for m in range(n):
+                    s += a[i, m] * G[m, j]
+                b[i, j] = s * scale / k
+                biggest = max(biggest, abs(b[i, j]))
+        for i in range(n):
+            for j in range(n):
+                a[i, j] = b[i, j]
+                out[i, j] += b[i, j]
+        if biggest <= 1e-18:
+            break
+    for _ in range(squarings):
+        for i in range(n):
+            for j in range(n):
+                s = 0.0
+                for m in range(n):
+                    s += out[i, m] * out[m, j]
+                b[i, j] = s
+        for i in range(n):
+            for j in range(n):
+                out[i, j] = b[i, j]
+
+
+@njit(cache=True)
+def taylor_flow(G, buf, start, delta):
+    """The augmented state ``delta`` after row ``start`` of ``buf``, into row FLOW, and its
+    rate ``G Y`` into FLOW_RATE (a short time: the series converges fast)."""
+    n = G.shape[0]
+    for i in range(n):
+        buf[FLOW, i] = buf[start, i]
+        buf[TERM, i] = buf[start, i]
+    size = 0.0
+    for i in range(n):
+        size = max(size, abs(buf[start, i]))
+    for k in range(1, TAYLOR_TERMS):
+        biggest = 0.0
+        for i in range(n):
+            s = 0.0
+            for j in range(n):
+                s += G[i, j] * buf[TERM, j]
+            buf[TMP, i] = s * delta / k
+            biggest = max(biggest, abs(buf[TMP, i]))
+        for i in range(n):
+            buf[TERM, i] = buf[TMP, i]
+            buf[FLOW, i] += buf[TMP, i]
+        if biggest <= 1e-17 * size:
+            break
+    rate_of(G, buf, FLOW, FLOW_RATE)
+
+
+@njit(cache=True, inline="always")
+def rate_of(G, buf, row, into):
+    n = G.shape[0]
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += G[i, j] * buf[row, j]
+        buf[into, i] = s
+
+
+@njit(cache=True, inline="always")
+def surface_at(A, b, i, buf, row):
+    g = b[i]
+    for j in range(A.shape[1]):
+        g += A[i, j] * buf[row, j]
+    return g
+
+
+@njit(cache=True, inline="always")
+def surface_rate(A, i, buf, row):
+    r = 0.0
+    for j in range(A.shape[1]):
+        r += A[i, j] * buf[row, j]
+    return r
+
+
+# ---------------------------------------------------------------------------------------
+# roots and extrema on a quarter, by safeguarded Newton on the flow
+
+
+@njit(cache=True, inline="always")
+def tangents_meet(f_a, r_a, f_b, r_b, span):
+    """Where the tangents at a quarter's ends meet: a lower bound of f on the quarter when
+    f is convex there (r_a < 0 < r_b), an upper bound when concave (r_a > 0 > r_b); the
+    extremum is only located when this bound does not already settle the question."""
+    return (f_a * r_b - f_b * r_a + r_a * r_b * span) / (r_b - r_a)
+
+
+@njit(cache=True, inline="always")
+def hermite_guess(f_lo, r_lo, f_hi, r_hi, span):
+    """A root in (0, span) of the cubic Hermite interpolant of (f, f') at both ends (a
+    start for Newton on the flow: one or two iterations there then reach rounding)."""
+    x = f_lo * span / (f_lo - f_hi)  # the secant's root
+    for _ in range(8):
+        u = x / span
+        h00 = (1.0 + 2.0 * u) * (1.0 - u) ** 2
+        h10 = u * (1.0 - u) ** 2
+        h01 = u * u * (3.0 - 2.0 * u)
+        h11 = u * u * (u - 1.0)
+        p = h00 * f_lo + h10 * span * r_lo + h01 * f_hi + h11 * span * r_hi
+        dp = ((6.0 * u * u - 6.0 * u) * f_lo + (3.0 * u * u - 4.0 * u + 1.0) * span * r_lo
+              + (6.0 * u - 6.0 * u * u) * f_hi + (3.0 * u * u - 2.0 * u) * span * r_hi) / span
+        if dp == 0.0:
+            break
+        nxt = x - p / dp
+        if not (0.0 < nxt < span):
+            break
+        x = nxt
+    return x
+
+
+@njit(cache=True)
+def newton_on_quarter(G, surface, buf, start, bracket, of_rate, x):
+    """The root in ``bracket = (lo, hi, f_lo, f_hi)`` of ``sign g_i`` (``of_rate`` False) or
+    of ``sign g_i'`` (True), ``surface = (A, b, i, sign)``, along the flow from node row
+    ``start``, given its values ``f_lo >= 0 > f_hi`` (or the reverse) at the ends, from
+    the guess ``x`` (outside the bracket: the secant's). Leaves the flow at the root in
+    row FLOW. A root of g is found to rounding;
+    one of g' (an extremum) to EXTREMUM_TOL of the bracket, which puts g there within
+    rounding of its extreme value (g is flat at the root of g')."""
+    A, b, i, sign = surface
+    lo, hi, f_lo, f_hi = bracket
+    x_tol = EXTREMUM_TOL * (hi - lo) if of_rate else 0.0
+    if not (lo < x < hi):
+        x = lo + f_lo * (hi - lo) / (f_lo - f_hi) if f_lo != f_hi else 0.5 * (lo + hi)
+    positive_low = f_lo >= 0.0
+    for _ in range(NEWTON_ITERATIONS):
+        taylor_flow(G, buf, start, x)
+        if of_rate:
+            f = sign * surface_rate(A, i, buf, FLOW_RATE)
+            # g'' = A (G Y)' = A G (G Y): the rate of the flow's rate
+            df = 0.0
+            for j in range(A.shape[1]):
+                s = 0.0
+                for m in range(G.shape[0]):
+                    s += G[j, m] * buf[FLOW_RATE, m]
+                df += A[i, j] * s
+            df *= sign
+        else:
+            f = sign * surface_at(A, b, i, buf, FLOW)
+            df = sign * surface_rate(A, i, buf, FLOW_RATE)
+        if f == 0.0:
+            return x
+        if (f >= 0.0) == positive_low:
+            lo = x
+        else:
+            hi = x
+        step = -f / df if df != 0.0 else 0.0
+        nxt = x + step
+        if not (lo < nxt < hi) or df == 0.0:
+            nxt = 0.5 * (lo + hi)
+        if abs(nxt - x) <= max(1e-16 * max(abs(x), hi - lo), x_tol) or hi - lo <= 1e-300:
+            return x
+        x = nxt
+    taylor_flow(G, buf, start, x)
+    return x
+
+
+@njit(cache=True)
+def first_exit(G, A, b, i, sign, buf, times, last):
+    """Earliest time in (0, times[last]] where ``sign g_i`` turns negative (a crossing or a
+    grazing excursion), or NO_ROOT; quarters 1..last. The state there is in row FLOW."""
+    h_prev = sign * surface_at(A, b, i, buf, NODES)
+    on_surface = h_prev <= 0.0
+    h_prev = max(h_prev, 0.0)  # a restart on the surface: its residual is rounding
+    r_prev = sign * surface_rate(A, i, buf, RATES)
+    for q in range(1, last + 1):
+        h_q = sign * surface_at(A, b, i, buf, NODES + q)
+        r_q = sign * surface_rate(A, i, buf, RATES + q)
+        span = times[q] - times[q - 1]
+        if q == 1 and on_surface and h_q < 0.0 and r_prev > 0.0 > r_q:
+            # a restart on the surface that rises into its mode's side and comes back
+            # within the quarter: the exit is after the maximum, not the start's residual
+            x_max = newton_on_quarter(G, (A, b, i, sign), buf, NODES,
+                                      (0.0, span, r_prev, r_q), True, -1.0)
+            h_max = sign * surface_at(A, b, i, buf, FLOW)
+            if h_max > 0.0:
+                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES,
+                                      (x_max, span, h_max, h_q), False, -1.0)
+                return x
+        if h_q < 0.0:
+            guess = hermite_guess(h_prev, r_prev, h_q, r_q, span)
+            x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+                                  (0.0, span, h_prev, h_q), False, guess)
+            return times[q - 1] + x
+        if r_prev < 0.0 < r_q and tangents_meet(h_prev, r_prev, h_q, r_q, span) <= 0.0:
+            # a minimum of sign g inside that may lie beyond the surface
+            x_min = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+                                      (0.0, span, r_prev, r_q), True, -1.0)
+            h_min = sign * surface_at(A, b, i, buf, FLOW)
+            if h_min < 0.0:
+                guess = hermite_guess(h_prev, r_prev, h_min, 0.0, x_min)
+                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+                                      (0.0, x_min, h_prev, h_min), False, guess)
+                return times[q - 1] + x
+        h_prev, r_prev = h_q, r_q
+    return NO_ROOT
+
+
+@njit(cache=True)
+def contact_maximum(G, A, b, i, buf, times, last, end, known):
+    """Largest value of g_i on [0, end] (end <= times[last]): the nodes and the maxima
+    inside quarters, those that may exceed ``known`` (the running maximum) located."""
+    best = surface_at(A, b, i, buf, NODES)
+    g_prev = best
+    r_prev = surface_rate(A, i, buf, RATES)
+    for q in range(1, last + 1):
+        r_q = surface_rate(A, i, buf, RATES + q)
+        g_q = surface_at(A, b, i, buf, NODES + q)
+        if times[q] <= end:
+            best = max(best, g_q)
+        floor = max(best, known)
+        span = times[q] - times[q - 1]
+        if r_prev > 0.0 > r_q and tangents_meet(g_prev, r_prev, g_q, r_q, span) > floor:
+            x = newton_on_quarter(G, (A, b, i, 1.0), buf, NODES + q - 1,
+                                  (0.0, span, r_prev, r_q), True, -1.0)
+            if times[q - 1] + x <= end:
+                best = max(best, surface_at(A, b, i, buf, FLOW))
+        g_prev, r_prev = g_q, r_q
+    return best
+
+
+# ---------------------------------------------------------------------------------------
+# the step
+
+
+@njit(cache=True)
+def quarter_nodes(Q, G, buf, extra):
+    """Nodes 1..4 from node 0 with the quarter propagator ``Q``; node 4 then moves on by
+    ``extra`` (a landing step a rounding longer than the mode's). Rates of all five."""
+    n = Q.shape[0]
+    for q in range(1, 5):
+        for i in range(n):
+            s = 0.0
+            for j in range(n):
+                s += Q[i, j] * buf[NODES + q - 1, j]
+            buf[NODES + q, i] = s
+    finish_nodes(G, buf, extra)
+
+
+@njit(cache=True)
+def partial_nodes(Q, G, buf, quarter, h, times):
+    """Nodes of a step of ``h`` shorter than its mode's: its whole quarters by the quarter
+    propagator, the rest by the flow's Taylor series; node times into ``times``. Returns
+    the number of segments (1 .. 4)."""
+    n = Q.shape[0]
+    whole = min(int(h / quarter), 3)
+    if h - whole * quarter <= 1e-12 * h and whole > 0:  # (a rounding short of whole quarters)
+        whole -= 1
+    for q in range(1, whole + 1):
+        for i in range(n):
+            s = 0.0
+            for j in range(n):
+                s += Q[i, j] * buf[NODES + q - 1, j]
+            buf[NODES + q, i] = s
+        times[q] = q * quarter
+    taylor_flow(G, buf, NODES + whole, h - whole * quarter)
+    for i in range(n):
+        buf[NODES + whole + 1, i] = buf[FLOW, i]
+    times[whole + 1] = h
+    for q in range(whole + 2):
+        rate_of(G, buf, NODES + q, RATES + q)
+    return whole + 1
+
+
+@njit(cache=True, inline="always")
+def finish_nodes(G, buf, extra):
+    n = G.shape[0]
+    if extra != 0.0:
+        taylor_flow(G, buf, NODES + 4, extra)
+        for i in range(n):
+            buf[NODES + 4, i] = buf[FLOW, i]
+    for q in range(5):
+        rate_of(G, buf, NODES + q, RATES + q)
+
+
+@njit(cache=True)
+def write_exact_samples(G, buf, times, last, t, end, opts, istate, sample_t, sample_y):
+    """Samples at every sample time in [t, t + end], each from the flow of its segment
+    (``last`` segments)."""
+    dt = opts[SAMPLE_DT]
+    capacity = sample_t.shape[0]
+    k = istate[N_SAMPLES]
+    dim = sample_y.shape[1]
+    while k < capacity:
+        ts = opts[SAMPLE_T0] + k * dt
+        if ts > t + end * (1.0 + 1e-12):
+            break
+        x = min(max(ts - t, 0.0), end)
+        q = 0
+        while q < last - 1 and times[q + 1] <= x:
+            q += 1
+        taylor_flow(G, buf, NODES + q, x - times[q])
+        sample_t[k] = ts
+        for i in range(dim):
+            sample_y[k, i] = buf[FLOW, i]
+        k += 1
+    istate[N_SAMPLES] = k
+
+
+@njit(cache=True)
+def step_nodes(p, at, y, t, h, buf, times):
+    """The nodes of a step of ``h`` from (t, y) in the mode packed at ``at``, their rates
+    and times; returns the number of segments."""
+    base = block_start(p)
+    aug = int(p[base + 1])
+    w = p[base + 2]
+    dim = y.shape[0]
+    h_mode = p[at]
+    G = p[at + 1: at + 1 + aug * aug].reshape((aug, aug))
+    Q = p[at + 1 + aug * aug: at + 1 + 2 * aug * aug].reshape((aug, aug))
+    for i in range(dim):
+        buf[NODES, i] = y[i]
+    buf[NODES, dim] = sin(w * t)
+    buf[NODES, dim + 1] = cos(w * t)
+    buf[NODES, dim + 2] = 1.0
+    times[0] = 0.0
+    if abs(h - h_mode) > 1e-6 * h_mode:
+        return partial_nodes(Q, G, buf, 0.25 * h_mode, h, times)
+    quarter_nodes(Q, G, buf, h - h_mode)
+    for q in range(1, 4):
+        times[q] = 0.25 * q * h_mode
+    times[4] = h
+    return 4
+
+
+@njit(cache=True)
+def earliest_crossing(G, surfaces, mode, buf, times, last, work):
+    """The earliest time a watched surface is crossed in the step, and the mask of every
+    surface crossed then ((2 * step, 0): none); the state there into ``work[0]``."""
+    A_s, b_s, relevance, _ = surfaces
+    dim = A_s.shape[1]
+    watched = relevance[mode]
+    h = times[last]
+    best, mask = 2.0 * h, 0
+    for i in range(A_s.shape[0]):
+        if not (watched >> i) & 1:
+            continue
+        sign = 1.0 if (mode >> i) & 1 else -1.0
+        x = first_exit(G, A_s, b_s, i, sign, buf, times, last)
+        if x == NO_ROOT:
+            continue
+        if x < best - 1e-14 * h:
+            best, mask = x, 1 << i
+            for j in range(dim):
+                work[0, j] = buf[FLOW, j]  # the state on the surface
+        elif x <= best + 1e-14 * h:
+            mask |= 1 << i
+    return best, mask
+
+
+@njit(cache=True)
+def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
+    """Integrate ``y`` in place from ``t`` to exactly ``t_end`` on the modes' exact flow;
+    a status code (see ``driver`` for the conventions; switches are always located)."""
+    A_s, b_s, relevance, contact = surfaces
+    istate, fstate, work = state
+    sample_t, sample_y = samples
+    dim = y.shape[0]
+    base = block_start(p)
+    aug = int(p[base + 1])
+    buf = np.empty((SCRATCH_ROWS, aug))
+    times = np.empty(5)
+    sampling = opts[SAMPLE_DT] > 0.0
+    steps, switches = 0, 0
+    h_mode = 0.0
+    while t_end - t > 1e-14 * max(1.0, abs(t_end)):
+        mode = istate[MODE]
+        at = mode_offset(p, base, mode)
+        h_mode = p[at]
+        G = p[at + 1: at + 1 + aug * aug].reshape((aug, aug))
+        remaining = t_end - t
+        landing = remaining <= h_mode * (1.0 + 1e-6)
+        h = remaining if landing else h_mode
+        last = step_nodes(p, at, y, t, h, buf, times)
+        best, mask = earliest_crossing(G, surfaces, mode, buf, times, last, work)
+        end = best if mask != 0 else h
+        if contact >= 0:
+            g_max = contact_maximum(G, A_s, b_s, contact, buf, times, last, end,
+                                    fstate[MAX_G])
+            if mask != 0:  # (the step ends on a surface: g there counts too)
+                g_max = max(g_max, surface_at(A_s, b_s, contact, work, 0))
+            fstate[MAX_G] = max(fstate[MAX_G], g_max)
+        if end > 0.0:  # (a grazing restart, leaving right at the start, takes no step)
+            if sampling:
+                write_exact_samples(G, buf, times, last, t, end, opts, istate, sample_t,
+                                    sample_y)
+            if mask != 0:
+                for i in range(dim):
+                    y[i] = work[0, i]
+                t = t + end
+            else:
+                for i in range(dim):
+                    y[i] = buf[NODES + last, i]
+                t = t_end if landing else t + h
+            istate[N_STEPS] += 1
+            steps += 1
+            if out_of_bounds(y, opts[BOUND]):
+                fstate[H] = h_mode
+                return DIVERGED
+        if mask != 0:
+            apply_switch(mask, y, A_s, b_s, relevance, contact, istate)
+            switches += 1
+            if switches > opts[MAX_SWITCHES]:
+                return stopped_at_switch(fstate, t, h_mode)
+        if steps > opts[MAX_STEPS]:
+            fstate[H] = h_mode
+            return STEP_BUDGET
+    fstate[H] = h_mode
+    return OK
