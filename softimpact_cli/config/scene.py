@@ -246,6 +246,11 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
                           f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
                           "use cell_size = 0")
     integrator = _default_method(doc, system, values, integrator)
+    if integrator.method == "exact" and "method" not in doc.get("integrator", {}):
+        # said in the text: its hash (resume, caches) then tells the runs apart from
+        # those made when the default was "auto"
+        text += ('\n# [integrator] method = "exact": the default for a piecewise-linear '
+                 "system (no method, rtol or atol set)\n")
     if integrator.resolved_method == "exact":
         _check_exact(source, system, values, integrator)
     period = 2.0 * math.pi / values["w"]
