@@ -30,11 +30,18 @@ def _plain(value):
     return value
 
 
+def _first_method(ds) -> str:
+    """What the steps that are not Rodas4's are: the explicit pair's, or the exact flow's."""
+    exact = ds.attrs.get("integrator_resolved_method") == "exact"
+    return "exact flow" if exact else "explicit"
+
+
 def describe(ds) -> dict:
     """Summary of a result dataset: analysis, outcome, timings, provenance."""
     out = {k: _plain(ds.attrs[k]) for k in SUMMARY_KEYS if k in ds.attrs}
     out.update({k: _plain(v) for k, v in ds.attrs.items() if k.startswith("check_")})
-    steps = {phase: {"explicit": int(ds.attrs[f"{phase}_steps"])
+    first = _first_method(ds)
+    steps = {phase: {first: int(ds.attrs[f"{phase}_steps"])
                      - int(ds.attrs[f"{phase}_stiff_steps"]),
                      "stiff": int(ds.attrs[f"{phase}_stiff_steps"]),
                      "method_switches": int(ds.attrs[f"{phase}_method_switches"])}
@@ -182,7 +189,7 @@ def sweep_summary(ds) -> dict:
                                 for code, name in CLASSIFIED_BY.items()}
     if "steps" in ds:
         stiff = int(ds["stiff_steps"].values.sum())
-        out["steps_by_method"] = {"explicit": int(ds["steps"].values.sum()) - stiff,
+        out["steps_by_method"] = {_first_method(ds): int(ds["steps"].values.sum()) - stiff,
                                   "stiff": stiff}
     return {**out, "complete": bool(int(ds.attrs.get("complete", 0))),
             "n": int(ds.attrs.get("n", label.size)),

@@ -172,3 +172,14 @@ def test_variational_equations_fall_back_to_dopri5():
                  problem("bilinear", 1, BILINEAR_BODY, method="exact").integrator)
     assert pr.integrator.resolved_method == "dopri5"
     assert exact_refusal(system, system.pack(BILINEAR_BODY)) is None
+
+
+def test_info_names_the_exact_flow_steps(tmp_path):
+    from softimpact_cli.api import run
+    from softimpact_cli.report.info import describe
+
+    ds = run('[system]\nmodel = "bilinear"\nbodies = 1\n[analysis]\nkind = "trajectory"\n'
+             "state = [0.5, 0.0]\nperiods = 4\n")
+    assert ds.attrs["integrator_resolved_method"] == "exact"  # the bilinear default
+    steps = describe(ds)["steps_by_method"]["record"]
+    assert steps["exact flow"] > 0 and steps["stiff"] == 0 and "explicit" not in steps
