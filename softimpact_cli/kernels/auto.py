@@ -46,6 +46,7 @@ from .layout import (
     N_STEPS,
     YNEW,
 )
+from .linalg import inf_norm, matmul_into
 
 ORDER = 4  # the lower of the two methods' orders (dopri5 5, rodas4 4)
 STIFF_EDGE = 3.25  # h |lambda| above which dopri5's step is stability bound (dopri5.f)
@@ -85,17 +86,6 @@ def explicit_stiffness(y, h, work):
 
 
 @njit(cache=True)
-def inf_norm(a):
-    worst = 0.0
-    for i in range(a.shape[0]):
-        s = 0.0
-        for j in range(a.shape[1]):
-            s += abs(a[i, j])
-        worst = max(worst, s)
-    return worst
-
-
-@njit(cache=True)
 def spectral_radius_bound(jac, a, b):
     """Upper bound ``||J^(2^k)||_inf^(1/2^k) >= rho(J)``, k = SQUARINGS (Gelfand).
 
@@ -112,12 +102,7 @@ def spectral_radius_bound(jac, a, b):
         for j in range(n):
             a[i, j] = jac[i, j] / norm
     for _ in range(SQUARINGS):
-        for i in range(n):
-            for j in range(n):
-                s = 0.0
-                for k in range(n):
-                    s += a[i, k] * a[k, j]
-                b[i, j] = s
+        matmul_into(a, a, b)
         m = inf_norm(b)
         if m == 0.0:
             return 0.0  # nilpotent

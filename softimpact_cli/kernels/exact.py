@@ -52,6 +52,7 @@ from .layout import (
     SAMPLE_T0,
     H,
 )
+from .linalg import inf_norm, matmul_into
 
 HEADER = 3  # n_modes, aug, w
 STEP_PHASE = 2.0  # rad the fastest mode turns in one step (systems.piecewise_linear)
@@ -89,13 +90,7 @@ def expm(G, tau, out, a, b):
     """``out = exp(G tau)`` ((n, n) arrays; ``a``, ``b`` scratch of the same shape): the
     Taylor series of the scaled matrix to rounding, then repeated squaring."""
     n = G.shape[0]
-    norm = 0.0
-    for i in range(n):
-        s = 0.0
-        for j in range(n):
-            s += abs(G[i, j])
-        norm = max(norm, s)
-    norm *= abs(tau)
+    norm = inf_norm(G) * abs(tau)
     squarings = 0
     while norm > 0.25 and squarings < 64:
         norm *= 0.5
@@ -106,13 +101,11 @@ def expm(G, tau, out, a, b):
             a[i, j] = G[i, j] * scale
             out[i, j] = a[i, j] + (1.0 if i == j else 0.0)
     for k in range(2, 30):
+        matmul_into(a, G, b)
         biggest = 0.0
         for i in range(n):
             for j in range(n):
-                s = 0.0
-                for m in range(n):
-                    s += a[i, m] * G[m, j]
-                b[i, j] = s * scale / k
+                b[i, j] = b[i, j] * scale / k
                 biggest = max(biggest, abs(b[i, j]))
         for i in range(n):
             for j in range(n):
@@ -121,12 +114,7 @@ def expm(G, tau, out, a, b):
         if biggest <= 1e-18:
             break
     for _ in range(squarings):
-        for i in range(n):
-            for j in range(n):
-                s = 0.0
-                for m in range(n):
-                    s += out[i, m] * out[m, j]
-                b[i, j] = s
+        matmul_into(out, out, b)
         for i in range(n):
             for j in range(n):
                 out[i, j] = b[i, j]

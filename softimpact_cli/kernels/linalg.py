@@ -1,5 +1,6 @@
-"""Small dense linear algebra for the implicit methods: LU with partial pivoting and the
-difference Jacobian of a right-hand side in a frozen mode.
+"""Small dense linear algebra: LU with partial pivoting and the difference Jacobian of a
+right-hand side in a frozen mode (the implicit methods), a norm and a product (auto's
+spectral bound, the exact flow's propagators).
 
 The systems have a handful of state variables, so plain loops beat any call into LAPACK.
 """
@@ -10,6 +11,30 @@ from numba import njit
 
 SQRT_EPS = 1.4901161193847656e-08
 CBRT_EPS = 6.055454452393343e-06
+
+
+@njit(cache=True)
+def inf_norm(a):
+    """Largest absolute row sum of ``a``."""
+    worst = 0.0
+    for i in range(a.shape[0]):
+        s = 0.0
+        for j in range(a.shape[1]):
+            s += abs(a[i, j])
+        worst = max(worst, s)
+    return worst
+
+
+@njit(cache=True)
+def matmul_into(x, y, out):
+    """``out = x @ y`` for small square matrices (``out`` not ``x`` or ``y``)."""
+    n = x.shape[0]
+    for i in range(n):
+        for j in range(n):
+            s = 0.0
+            for k in range(n):
+                s += x[i, k] * y[k, j]
+            out[i, j] = s
 
 
 @njit(cache=True, inline="always")
