@@ -112,4 +112,7 @@ class ProgressLines:
             self._write(self.line())
 
     def close(self) -> None:
+        """Stop the timer and wait for its thread, so no line follows the caller's last."""
         self._stop.set()
+        if self._thread is not threading.current_thread():
+            self._thread.join(timeout=5.0)

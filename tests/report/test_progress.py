@@ -40,3 +40,15 @@ def test_durations_and_interval(monkeypatch):
     assert interval_s() == 0.5
     monkeypatch.setenv("SOFTIMPACT_PROGRESS_INTERVAL", "soon")
     assert interval_s() == 30.0
+
+
+def test_close_returns_only_when_the_timer_thread_has_ended():
+    # close() that only set the event left the thread alive for a moment: a CLI command
+    # that had returned still had a timer running (it failed a CI run's thread check)
+    for _ in range(20):
+        p = ProgressLines(10, interval=60, write=lambda line: None)
+        p.close()
+        assert not p._thread.is_alive()
+    finished = ProgressLines(2, interval=60, write=lambda line: None)
+    finished(2)  # reaching the total closes it
+    assert not finished._thread.is_alive()
