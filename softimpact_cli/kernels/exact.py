@@ -13,21 +13,23 @@ not apply.
 
 ``systems.piecewise_linear`` packs the modes' data behind the system's parameters (the
 rhs reads only its own leading entries): ``p[-1]`` is where the block starts, holding
-``n_modes, aug, w`` and per mode its step ``h_m``, ``G_m`` and the quarter propagator
-``exp(G_m h_m / 4)`` (row-major). ``h_m`` turns the fastest mode of ``G_m`` by at most
-STEP_PHASE rad (and is at most T / 8), so a quarter step turns it by at most 0.5 rad.
+``n_modes, aug, w, n_surfaces`` and per mode its step ``h_m``, ``G_m``, the quarter
+propagator ``exp(G_m h_m / 4)`` and the surfaces' rate matrix ``R_m = A G_m`` (row-major).
+``h_m`` turns the fastest mode of ``G_m`` by at most STEP_PHASE rad (and is at most T / 8),
+so a quarter step turns it by at most 0.5 rad.
 
 A step is four quarter steps; at the five nodes the switching functions ``g = A y + b``
-and their rates ``g' = A y'`` are exact. A watched surface is crossed in a quarter when
+and their rates ``g' = R_m Y`` are exact. A watched surface is crossed in a quarter when
 ``g`` changes side between its nodes, or when ``g'`` changes sign inside it (an
 extremum) and ``g`` there is beyond the surface (a grazing excursion): within a quarter
 of 0.5 rad ``g'`` changes sign at most once for any solution that is not contrived. The
-crossing (and the extremum) is found by safeguarded Newton iterations on the flow from
-the quarter's first node, evaluated by its Taylor series (the quarter is short, so the
-series converges fast). The contact function's running maximum and dense samples are
-exact in the same way. A step shorter than ``h_m`` (landing on ``t_end`` after a switch
-moved the grid) takes its whole quarters with the propagator and the rest by the Taylor
-series, so it has up to four segments of unequal length.
+crossing (and the extremum) is found by safeguarded Newton iterations on the flow's
+Taylor series on the quarter (in powers of the fraction of the quarter, built once per
+quarter; g along it is then a polynomial whose coefficients are built once per surface,
+so an iteration costs a few dozen flops). The contact function's running maximum and
+dense samples are exact in the same way. A step shorter than ``h_m`` (landing on
+``t_end`` after a switch moved the grid) takes its whole quarters with the propagator and
+the rest by the Taylor series, so it has up to four segments of unequal length.
 
 Counters: ``N_STEPS`` counts steps; no right-hand side is evaluated (``N_RHS`` stays).
 """
@@ -54,15 +56,18 @@ from .layout import (
 )
 from .linalg import inf_norm, matmul_into
 
-HEADER = 3  # n_modes, aug, w
+HEADER = 4  # n_modes, aug, w, n_surfaces
 STEP_PHASE = 2.0  # rad the fastest mode turns in one step (systems.piecewise_linear)
 TAYLOR_TERMS = 60
 NEWTON_ITERATIONS = 60
 EXTREMUM_TOL = 1e-9  # of a quarter: the value at an extremum is then exact to ~1e-18
 NO_ROOT = -1.0
-# rows of the scratch buffer: five nodes, their rates, the flow's state, its rate, a term
-NODES, RATES, FLOW, FLOW_RATE, TERM, TMP = 0, 5, 10, 11, 12, 13
-SCRATCH_ROWS = 14
+# rows of the scratch buffer: five nodes, the flow's state, a term and its successor;
+# then which quarter's series (and which surface's coefficients) the rows below hold, and
+# the series' terms. Its last column holds one surface's g along the series (COEF).
+NODES, FLOW, TERM, TMP, KEY, SERIES = 0, 5, 6, 7, 8, 9
+SCRATCH_ROWS = SERIES + TAYLOR_TERMS
+KEY_START, KEY_SPAN, KEY_TERMS, KEY_SURFACE = 0, 1, 2, 3  # columns of row KEY (aug >= 5)
 
 
 # ---------------------------------------------------------------------------------------
@@ -76,9 +81,25 @@ def block_start(p):
 
 @njit(cache=True)
 def mode_offset(p, base, mode):
-    """Where mode ``mode``'s ``h_m`` sits in ``p``; G follows, then the quarter propagator."""
+    """Where mode ``mode``'s ``h_m`` sits in ``p``; G follows, then the quarter propagator,
+    then the surfaces' rate matrix."""
     aug = int(p[base + 1])
-    return base + HEADER + mode * (1 + 2 * aug * aug)
+    n_surfaces = int(p[base + 3])
+    return base + HEADER + mode * (1 + 2 * aug * aug + n_surfaces * aug)
+
+
+@njit(cache=True)
+def mode_matrices(p, at):
+    """(G, Q, R) of the mode packed at ``at``: its generator (aug, aug), quarter propagator
+    (aug, aug) and rate matrix R = A G (n_surfaces, aug), so that g_i' = R_i Y."""
+    base = block_start(p)
+    aug = int(p[base + 1])
+    n_surfaces = int(p[base + 3])
+    a = at + 1
+    G = p[a: a + aug * aug].reshape((aug, aug))
+    Q = p[a + aug * aug: a + 2 * aug * aug].reshape((aug, aug))
+    R = p[a + 2 * aug * aug: a + 2 * aug * aug + n_surfaces * aug].reshape((n_surfaces, aug))
+    return G, Q, R
 
 
 # ---------------------------------------------------------------------------------------
@@ -120,10 +141,18 @@ def expm(G, tau, out, a, b):
                 out[i, j] = b[i, j]
 
 
+@njit(cache=True, inline="always")
+def forcing_columns(n, i):
+    """The first column row ``i`` of an augmented generator or propagator (n, n) can have
+    nonzero: its last three rows (sin w t, cos w t, 1) act on the last three entries only,
+    the rest being exact zeros (so a product that skips them makes the same sums)."""
+    return 0 if i < n - 3 else n - 3
+
+
 @njit(cache=True)
 def taylor_flow(G, buf, start, delta):
-    """The augmented state ``delta`` after row ``start`` of ``buf``, into row FLOW, and its
-    rate ``G Y`` into FLOW_RATE (a short time: the series converges fast)."""
+    """The augmented state ``delta`` after row ``start`` of ``buf``, into row FLOW (a short
+    time: the series converges fast)."""
     n = G.shape[0]
     for i in range(n):
         buf[FLOW, i] = buf[start, i]
@@ -135,7 +164,7 @@ def taylor_flow(G, buf, start, delta):
         biggest = 0.0
         for i in range(n):
             s = 0.0
-            for j in range(n):
+            for j in range(forcing_columns(n, i), n):
                 s += G[i, j] * buf[TERM, j]
             buf[TMP, i] = s * delta / k
             biggest = max(biggest, abs(buf[TMP, i]))
@@ -144,17 +173,6 @@ def taylor_flow(G, buf, start, delta):
             buf[FLOW, i] += buf[TMP, i]
         if biggest <= 1e-17 * size:
             break
-    rate_of(G, buf, FLOW, FLOW_RATE)
-
-
-@njit(cache=True, inline="always")
-def rate_of(G, buf, row, into):
-    n = G.shape[0]
-    for i in range(n):
-        s = 0.0
-        for j in range(n):
-            s += G[i, j] * buf[row, j]
-        buf[into, i] = s
 
 
 @njit(cache=True, inline="always")
@@ -166,10 +184,11 @@ def surface_at(A, b, i, buf, row):
 
 
 @njit(cache=True, inline="always")
-def surface_rate(A, i, buf, row):
+def surface_rate(R, i, buf, row):
+    """g_i' at the augmented state in ``row``, from the mode's rate matrix R = A G."""
     r = 0.0
-    for j in range(A.shape[1]):
-        r += A[i, j] * buf[row, j]
+    for j in range(R.shape[1]):
+        r += R[i, j] * buf[row, j]
     return r
 
 
@@ -209,37 +228,122 @@ def hermite_guess(f_lo, r_lo, f_hi, r_hi, span):
 
 
 @njit(cache=True)
-def newton_on_quarter(G, surface, buf, start, bracket, of_rate, x):
-    """The root in ``bracket = (lo, hi, f_lo, f_hi)`` of ``sign g_i`` (``of_rate`` False) or
-    of ``sign g_i'`` (True), ``surface = (A, b, i, sign)``, along the flow from node row
-    ``start``, given its values ``f_lo >= 0 > f_hi`` (or the reverse) at the ends, from
-    the guess ``x`` (outside the bracket: the secant's). Leaves the flow at the root in
-    row FLOW. A root of g is found to rounding;
-    one of g' (an extremum) to EXTREMUM_TOL of the bracket, which puts g there within
-    rounding of its extreme value (g is flat at the root of g')."""
+def scratch(aug):
+    """The scratch buffer of ``advance`` (rows as above, ``aug + 1`` columns), holding no
+    series yet."""
+    buf = np.empty((SCRATCH_ROWS, aug + 1))
+    forget_series(buf)
+    return buf
+
+
+@njit(cache=True, inline="always")
+def forget_series(buf):
+    """The series rows no longer match any quarter (the nodes moved on)."""
+    buf[KEY, KEY_START] = -1.0
+
+
+@njit(cache=True)
+def quarter_series(G, buf, start, span):
+    """The flow's Taylor series on the quarter from node row ``start``, in powers of
+    ``u = x / span``: rows SERIES + k hold ``(G span)^k Y / k!`` until a term is below
+    rounding, so the state at x in [0, span] is ``sum_k T_k u^k``. Returns the number of
+    terms; a series already built for (start, span) is reused (a root and an extremum on
+    one quarter, or two surfaces, share it)."""
+    if buf[KEY, KEY_START] == start and buf[KEY, KEY_SPAN] == span:
+        return int(buf[KEY, KEY_TERMS])
+    n = G.shape[0]
+    size = 0.0
+    for i in range(n):
+        buf[SERIES, i] = buf[start, i]
+        size = max(size, abs(buf[start, i]))
+    terms = TAYLOR_TERMS
+    for k in range(1, TAYLOR_TERMS):
+        biggest = 0.0
+        for i in range(n):
+            s = 0.0
+            for j in range(forcing_columns(n, i), n):
+                s += G[i, j] * buf[SERIES + k - 1, j]
+            buf[SERIES + k, i] = s * span / k
+            biggest = max(biggest, abs(buf[SERIES + k, i]))
+        if biggest <= 1e-17 * size:
+            terms = k + 1
+            break
+    buf[KEY, KEY_START] = start
+    buf[KEY, KEY_SPAN] = span
+    buf[KEY, KEY_TERMS] = terms
+    buf[KEY, KEY_SURFACE] = -1.0
+    return terms
+
+
+@njit(cache=True)
+def surface_series(A, b, i, buf, terms):
+    """g_i along the quarter's series: its coefficients in powers of u into column COEF."""
+    if buf[KEY, KEY_SURFACE] == i:
+        return
+    coef = buf.shape[1] - 1
+    for k in range(terms):
+        c = 0.0
+        for j in range(A.shape[1]):
+            c += A[i, j] * buf[SERIES + k, j]
+        buf[SERIES + k, coef] = c
+    buf[SERIES, coef] += b[i]
+    buf[KEY, KEY_SURFACE] = i
+
+
+@njit(cache=True, inline="always")
+def series_derivatives(buf, terms, u):
+    """(p, dp/du, d2p/du2) at u of the polynomial in column COEF (Horner)."""
+    coef = buf.shape[1] - 1
+    p = buf[SERIES + terms - 1, coef]
+    dp = 0.0
+    ddp = 0.0
+    for k in range(terms - 2, -1, -1):
+        ddp = ddp * u + 2.0 * dp
+        dp = dp * u + p
+        p = p * u + buf[SERIES + k, coef]
+    return p, dp, ddp
+
+
+@njit(cache=True)
+def series_state(G, buf, terms, u):
+    """The state at ``u`` of the quarter's series into row FLOW (Horner)."""
+    n = G.shape[0]
+    for i in range(n):
+        v = buf[SERIES + terms - 1, i]
+        for k in range(terms - 2, -1, -1):
+            v = v * u + buf[SERIES + k, i]
+        buf[FLOW, i] = v
+
+
+@njit(cache=True)
+def newton_on_quarter(G, surface, buf, start, span, bracket, of_rate, x):
+    """The root in ``bracket = (lo, hi, f_lo, f_hi)`` (within the quarter [0, span] from
+    node row ``start``) of ``sign g_i`` (``of_rate`` False) or of ``sign g_i'`` (True),
+    ``surface = (A, b, i, sign)``, along the flow, given its values ``f_lo >= 0 > f_hi``
+    (or the reverse) at the ends, from the guess ``x`` (outside the bracket: the
+    secant's). g and its derivatives are the polynomial of the quarter's Taylor series
+    (``quarter_series``), so an iteration costs a few dozen flops. Leaves the flow at the
+    root in row FLOW. A root of g is found to rounding; one of g' (an extremum) to
+    EXTREMUM_TOL of the bracket, which puts g there within rounding of its extreme value
+    (g is flat at the root of g')."""
     A, b, i, sign = surface
     lo, hi, f_lo, f_hi = bracket
+    terms = quarter_series(G, buf, start, span)
+    surface_series(A, b, i, buf, terms)
     x_tol = EXTREMUM_TOL * (hi - lo) if of_rate else 0.0
     if not (lo < x < hi):
         x = lo + f_lo * (hi - lo) / (f_lo - f_hi) if f_lo != f_hi else 0.5 * (lo + hi)
     positive_low = f_lo >= 0.0
     for _ in range(NEWTON_ITERATIONS):
-        taylor_flow(G, buf, start, x)
-        if of_rate:
-            f = sign * surface_rate(A, i, buf, FLOW_RATE)
-            # g'' = A (G Y)' = A G (G Y): the rate of the flow's rate
-            df = 0.0
-            for j in range(A.shape[1]):
-                s = 0.0
-                for m in range(G.shape[0]):
-                    s += G[j, m] * buf[FLOW_RATE, m]
-                df += A[i, j] * s
-            df *= sign
+        p, dp, ddp = series_derivatives(buf, terms, x / span)
+        if of_rate:  # g' = p' / span, g'' = p'' / span^2
+            f = sign * dp / span
+            df = sign * ddp / (span * span)
         else:
-            f = sign * surface_at(A, b, i, buf, FLOW)
-            df = sign * surface_rate(A, i, buf, FLOW_RATE)
+            f = sign * p
+            df = sign * dp / span
         if f == 0.0:
-            return x
+            break
         if (f >= 0.0) == positive_low:
             lo = x
         else:
@@ -249,47 +353,47 @@ def newton_on_quarter(G, surface, buf, start, bracket, of_rate, x):
         if not (lo < nxt < hi) or df == 0.0:
             nxt = 0.5 * (lo + hi)
         if abs(nxt - x) <= max(1e-16 * max(abs(x), hi - lo), x_tol) or hi - lo <= 1e-300:
-            return x
+            break
         x = nxt
-    taylor_flow(G, buf, start, x)
+    series_state(G, buf, terms, x / span)
     return x
 
 
 @njit(cache=True)
-def first_exit(G, A, b, i, sign, buf, times, last):
+def first_exit(G, R, A, b, i, sign, buf, times, last):
     """Earliest time in (0, times[last]] where ``sign g_i`` turns negative (a crossing or a
     grazing excursion), or NO_ROOT; quarters 1..last. The state there is in row FLOW."""
     h_prev = sign * surface_at(A, b, i, buf, NODES)
     on_surface = h_prev <= 0.0
     h_prev = max(h_prev, 0.0)  # a restart on the surface: its residual is rounding
-    r_prev = sign * surface_rate(A, i, buf, RATES)
+    r_prev = sign * surface_rate(R, i, buf, NODES)
     for q in range(1, last + 1):
         h_q = sign * surface_at(A, b, i, buf, NODES + q)
-        r_q = sign * surface_rate(A, i, buf, RATES + q)
+        r_q = sign * surface_rate(R, i, buf, NODES + q)
         span = times[q] - times[q - 1]
         if q == 1 and on_surface and h_q < 0.0 and r_prev > 0.0 > r_q:
             # a restart on the surface that rises into its mode's side and comes back
             # within the quarter: the exit is after the maximum, not the start's residual
-            x_max = newton_on_quarter(G, (A, b, i, sign), buf, NODES,
+            x_max = newton_on_quarter(G, (A, b, i, sign), buf, NODES, span,
                                       (0.0, span, r_prev, r_q), True, -1.0)
             h_max = sign * surface_at(A, b, i, buf, FLOW)
             if h_max > 0.0:
-                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES,
+                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES, span,
                                       (x_max, span, h_max, h_q), False, -1.0)
                 return x
         if h_q < 0.0:
             guess = hermite_guess(h_prev, r_prev, h_q, r_q, span)
-            x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+            x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1, span,
                                   (0.0, span, h_prev, h_q), False, guess)
             return times[q - 1] + x
         if r_prev < 0.0 < r_q and tangents_meet(h_prev, r_prev, h_q, r_q, span) <= 0.0:
             # a minimum of sign g inside that may lie beyond the surface
-            x_min = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+            x_min = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1, span,
                                       (0.0, span, r_prev, r_q), True, -1.0)
             h_min = sign * surface_at(A, b, i, buf, FLOW)
             if h_min < 0.0:
                 guess = hermite_guess(h_prev, r_prev, h_min, 0.0, x_min)
-                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1,
+                x = newton_on_quarter(G, (A, b, i, sign), buf, NODES + q - 1, span,
                                       (0.0, x_min, h_prev, h_min), False, guess)
                 return times[q - 1] + x
         h_prev, r_prev = h_q, r_q
@@ -297,21 +401,21 @@ def first_exit(G, A, b, i, sign, buf, times, last):
 
 
 @njit(cache=True)
-def contact_maximum(G, A, b, i, buf, times, last, end, known):
+def contact_maximum(G, R, A, b, i, buf, times, last, end, known):
     """Largest value of g_i on [0, end] (end <= times[last]): the nodes and the maxima
     inside quarters, those that may exceed ``known`` (the running maximum) located."""
     best = surface_at(A, b, i, buf, NODES)
     g_prev = best
-    r_prev = surface_rate(A, i, buf, RATES)
+    r_prev = surface_rate(R, i, buf, NODES)
     for q in range(1, last + 1):
-        r_q = surface_rate(A, i, buf, RATES + q)
+        r_q = surface_rate(R, i, buf, NODES + q)
         g_q = surface_at(A, b, i, buf, NODES + q)
         if times[q] <= end:
             best = max(best, g_q)
         floor = max(best, known)
         span = times[q] - times[q - 1]
         if r_prev > 0.0 > r_q and tangents_meet(g_prev, r_prev, g_q, r_q, span) > floor:
-            x = newton_on_quarter(G, (A, b, i, 1.0), buf, NODES + q - 1,
+            x = newton_on_quarter(G, (A, b, i, 1.0), buf, NODES + q - 1, span,
                                   (0.0, span, r_prev, r_q), True, -1.0)
             if times[q - 1] + x <= end:
                 best = max(best, surface_at(A, b, i, buf, FLOW))
@@ -326,12 +430,12 @@ def contact_maximum(G, A, b, i, buf, times, last, end, known):
 @njit(cache=True)
 def quarter_nodes(Q, G, buf, extra):
     """Nodes 1..4 from node 0 with the quarter propagator ``Q``; node 4 then moves on by
-    ``extra`` (a landing step a rounding longer than the mode's). Rates of all five."""
+    ``extra`` (a landing step a rounding longer than the mode's)."""
     n = Q.shape[0]
     for q in range(1, 5):
         for i in range(n):
             s = 0.0
-            for j in range(n):
+            for j in range(forcing_columns(n, i), n):
                 s += Q[i, j] * buf[NODES + q - 1, j]
             buf[NODES + q, i] = s
     finish_nodes(G, buf, extra)
@@ -349,7 +453,7 @@ def partial_nodes(Q, G, buf, quarter, h, times):
     for q in range(1, whole + 1):
         for i in range(n):
             s = 0.0
-            for j in range(n):
+            for j in range(forcing_columns(n, i), n):
                 s += Q[i, j] * buf[NODES + q - 1, j]
             buf[NODES + q, i] = s
         times[q] = q * quarter
@@ -357,20 +461,15 @@ def partial_nodes(Q, G, buf, quarter, h, times):
     for i in range(n):
         buf[NODES + whole + 1, i] = buf[FLOW, i]
     times[whole + 1] = h
-    for q in range(whole + 2):
-        rate_of(G, buf, NODES + q, RATES + q)
     return whole + 1
 
 
 @njit(cache=True, inline="always")
 def finish_nodes(G, buf, extra):
-    n = G.shape[0]
     if extra != 0.0:
         taylor_flow(G, buf, NODES + 4, extra)
-        for i in range(n):
+        for i in range(G.shape[0]):
             buf[NODES + 4, i] = buf[FLOW, i]
-    for q in range(5):
-        rate_of(G, buf, NODES + q, RATES + q)
 
 
 @njit(cache=True)
@@ -398,16 +497,11 @@ def write_exact_samples(G, buf, times, last, t, end, opts, istate, sample_t, sam
 
 
 @njit(cache=True)
-def step_nodes(p, at, y, t, h, buf, times):
-    """The nodes of a step of ``h`` from (t, y) in the mode packed at ``at``, their rates
-    and times; returns the number of segments."""
-    base = block_start(p)
-    aug = int(p[base + 1])
-    w = p[base + 2]
+def step_nodes(G, Q, w, h_mode, y, t, h, buf, times):
+    """The nodes of a step of ``h`` from (t, y) in the mode of generator G and quarter
+    propagator Q (its step ``h_mode``) and their times; returns the number of segments."""
     dim = y.shape[0]
-    h_mode = p[at]
-    G = p[at + 1: at + 1 + aug * aug].reshape((aug, aug))
-    Q = p[at + 1 + aug * aug: at + 1 + 2 * aug * aug].reshape((aug, aug))
+    forget_series(buf)
     for i in range(dim):
         buf[NODES, i] = y[i]
     buf[NODES, dim] = sin(w * t)
@@ -424,7 +518,7 @@ def step_nodes(p, at, y, t, h, buf, times):
 
 
 @njit(cache=True)
-def earliest_crossing(G, surfaces, mode, buf, times, last, work):
+def earliest_crossing(G, R, surfaces, mode, buf, times, last, work):
     """The earliest time a watched surface is crossed in the step, and the mask of every
     surface crossed then ((2 * step, 0): none); the state there into ``work[0]``."""
     A_s, b_s, relevance, _ = surfaces
@@ -436,7 +530,7 @@ def earliest_crossing(G, surfaces, mode, buf, times, last, work):
         if not (watched >> i) & 1:
             continue
         sign = 1.0 if (mode >> i) & 1 else -1.0
-        x = first_exit(G, A_s, b_s, i, sign, buf, times, last)
+        x = first_exit(G, R, A_s, b_s, i, sign, buf, times, last)
         if x == NO_ROOT:
             continue
         if x < best - 1e-14 * h:
@@ -458,7 +552,8 @@ def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
     dim = y.shape[0]
     base = block_start(p)
     aug = int(p[base + 1])
-    buf = np.empty((SCRATCH_ROWS, aug))
+    w = p[base + 2]
+    buf = scratch(aug)
     times = np.empty(5)
     sampling = opts[SAMPLE_DT] > 0.0
     steps, switches = 0, 0
@@ -467,15 +562,15 @@ def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
         mode = istate[MODE]
         at = mode_offset(p, base, mode)
         h_mode = p[at]
-        G = p[at + 1: at + 1 + aug * aug].reshape((aug, aug))
+        G, Q, R = mode_matrices(p, at)
         remaining = t_end - t
         landing = remaining <= h_mode * (1.0 + 1e-6)
         h = remaining if landing else h_mode
-        last = step_nodes(p, at, y, t, h, buf, times)
-        best, mask = earliest_crossing(G, surfaces, mode, buf, times, last, work)
+        last = step_nodes(G, Q, w, h_mode, y, t, h, buf, times)
+        best, mask = earliest_crossing(G, R, surfaces, mode, buf, times, last, work)
         end = best if mask != 0 else h
         if contact >= 0:
-            g_max = contact_maximum(G, A_s, b_s, contact, buf, times, last, end,
+            g_max = contact_maximum(G, R, A_s, b_s, contact, buf, times, last, end,
                                     fstate[MAX_G])
             if mask != 0:  # (the step ends on a surface: g there counts too)
                 g_max = max(g_max, surface_at(A_s, b_s, contact, work, 0))

@@ -109,16 +109,17 @@ DISTINCT = 100.0  # sub-period differences below DISTINCT * tol mean "still conv
 
 
 @njit(cache=True)
-def _repeat_distance(hist, n, depth, q, span):
-    """max over j < span of |y_{n-j} - y_{n-j-q}|_inf."""
+def _repeats_within(hist, n, depth, q, span, lim):
+    """Whether |y_{n-j} - y_{n-j-q}|_inf <= lim for every j < span (stops at the first
+    point that does not: most candidate periods fail on it)."""
     dim = hist.shape[1]
-    worst = 0.0
     for j in range(span):
         a = hist[(n - j) % depth]
         b = hist[(n - j - q) % depth]
         for i in range(dim):
-            worst = max(worst, abs(a[i] - b[i]))
-    return worst
+            if abs(a[i] - b[i]) > lim:
+                return False
+    return True
 
 
 @njit(cache=True)
@@ -138,10 +139,10 @@ def _repeat_period(hist, n, depth, max_q, tol):
     for q in range(1, max_q + 1):
         if n < 2 * q:
             break
-        if _repeat_distance(hist, n, depth, q, q) > lim:
+        if not _repeats_within(hist, n, depth, q, q, lim):
             continue
         for r in range(1, q):
-            if q % r == 0 and _repeat_distance(hist, n, depth, r, q) <= DISTINCT * lim:
+            if q % r == 0 and _repeats_within(hist, n, depth, r, q, DISTINCT * lim):
                 return 0
         return q
     return 0
@@ -188,8 +189,8 @@ def follow_cells(y, n, cells, table, run, run_code):
     key = cell_key(y, cells.size)  # every visited key is written, whatever classifies
     cells.visited[n] = key
     code = MIXED_CELL
-    if key != NO_CELL and key in table:
-        code = table[key]
+    if key != NO_CELL:
+        code = table.get(key, MIXED_CELL)
     if code == MIXED_CELL:
         return 0, run_code
     if code == run_code:

@@ -86,7 +86,7 @@ def mode_step(G: np.ndarray, period: float) -> float:
 
 def exact_block(system: System, params: np.ndarray) -> np.ndarray:
     """The data ``kernels.exact`` reads behind the parameters (see its docstring):
-    ``[n_modes, aug, w, (h_m, G_m, exp(G_m h_m / 4)) per mode]`` (a copy: one per
+    ``[n_modes, aug, w, n_surfaces, (h_m, G_m, exp(G_m h_m / 4), A G_m) per mode]`` (a copy: one per
     parameter point is built once, ~2 ms for the pair's 16 modes)."""
     if system.variational:
         raise ValueError("the variational equations have no exact flow here")
@@ -103,8 +103,9 @@ def _cached_block(model: str, bodies: int, packed: bytes) -> np.ndarray:
     aug = dim + 3
     w = float(params[system.forcing_frequency_index])
     period = 2.0 * np.pi / w
-    n_modes = 1 << system.surfaces(params).A.shape[0]
-    parts = [np.array([n_modes, aug, w], dtype=np.float64)]
+    A = system.surfaces(params).A
+    n_modes = 1 << A.shape[0]
+    parts = [np.array([n_modes, aug, w, A.shape[0]], dtype=np.float64)]
     assert parts[0].size == HEADER
     a, b = np.empty((aug, aug)), np.empty((aug, aug))
     for mode in range(n_modes):
@@ -112,7 +113,10 @@ def _cached_block(model: str, bodies: int, packed: bytes) -> np.ndarray:
         h = mode_step(G, period)
         quarter = np.empty((aug, aug))
         expm(G, 0.25 * h, quarter, a, b)
-        parts += [np.array([h]), G.ravel(), quarter.ravel()]
+        # kernels.exact skips these in its products (forcing_columns): exact zeros
+        assert not G[dim:, :dim].any() and not quarter[dim:, :dim].any()
+        rates = A @ G[:dim, :]  # g' = A y' = (A G) Y
+        parts += [np.array([h]), G.ravel(), quarter.ravel(), rates.ravel()]
     return np.concatenate(parts)
 
 
