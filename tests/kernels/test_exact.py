@@ -183,3 +183,48 @@ def test_info_names_the_exact_flow_steps(tmp_path):
     assert ds.attrs["integrator_resolved_method"] == "exact"  # the bilinear default
     steps = describe(ds)["steps_by_method"]["record"]
     assert steps["exact flow"] > 0 and steps["stiff"] == 0 and "explicit" not in steps
+
+
+def test_a_quarters_taylor_polynomial_is_its_propagator_and_finds_roots_to_rounding():
+    # the switch search runs Newton on the quarter's series in powers of u = x / span:
+    # at u = 1 it must be the quarter propagator's node, and a root it returns must put g
+    # at zero to rounding (the state left in FLOW on the surface)
+    from softimpact_cli.kernels import exact
+
+    pr = problem("bilinear", 2, dict(BILINEAR_PAIR, d=0.5, phi=1.0), method="exact")
+    p = pr.params
+    A, b = pr.kernel_args()[0], pr.kernel_args()[1]
+    base = exact.block_start(p)
+    aug = int(p[base + 1])
+    rng = np.random.default_rng(7)
+    roots = 0
+    for mode in (0, 1, 5):
+        at = exact.mode_offset(p, base, mode)
+        G, Q, R = exact.mode_matrices(p, at)
+        np.testing.assert_allclose(R, A @ G[:4, :], rtol=0, atol=1e-15)
+        span = 0.25 * p[at]
+        for _ in range(5):
+            buf = exact.scratch(aug)
+            wt = rng.uniform(0, 2 * np.pi)
+            buf[exact.NODES, :aug] = [*rng.uniform(-2, 2, 4), np.sin(wt), np.cos(wt), 1.0]
+            terms = exact.quarter_series(G, buf, exact.NODES, span)
+            exact.series_state(G, buf, terms, 1.0)
+            node = Q @ buf[exact.NODES, :aug]
+            np.testing.assert_allclose(buf[exact.FLOW, :aug], node, rtol=0,
+                                       atol=1e-14 * np.max(np.abs(node)))
+            # a surface through the state halfway along: its root is there
+            buf[exact.NODES + 1, :aug] = buf[exact.FLOW, :aug]
+            exact.series_state(G, buf, terms, 0.5)
+            mid = buf[exact.FLOW, :4].copy()
+            b_mid = b.copy()
+            b_mid[1] = -A[1] @ mid  # g_1 = A_1 y + b_1 is zero at the midpoint
+            g0 = A[1] @ buf[exact.NODES, :4] + b_mid[1]
+            g1 = A[1] @ buf[exact.NODES + 1, :4] + b_mid[1]
+            if g0 * g1 >= 0 or abs(g0) < 1e-3 or abs(g1) < 1e-3:
+                continue  # not a single clean crossing on this quarter
+            x = exact.newton_on_quarter(G, (A, b_mid, 1, 1.0), buf, exact.NODES, span,
+                                        (0.0, span, g0, g1), False, -1.0)
+            assert x == pytest.approx(0.5 * span, rel=1e-12)
+            assert abs(A[1] @ buf[exact.FLOW, :4] + b_mid[1]) <= 1e-14
+            roots += 1
+    assert roots >= 10
