@@ -41,7 +41,8 @@ from numba import njit
 
 from .codes import DIVERGED, OK, STEP_BUDGET
 from .common import apply_switch, out_of_bounds
-from .driver import stopped_at_switch
+from .borrow import borrow
+from .driver import borrowed, stopped_at_switch
 from .layout import (
     BOUND,
     MAX_G,
@@ -546,15 +547,22 @@ def earliest_crossing(G, R, surfaces, mode, buf, times, last, work):
 def advance(rhs, p, y, t, t_end, surfaces, opts, state, samples):
     """Integrate ``y`` in place from ``t`` to exactly ``t_end`` on the modes' exact flow;
     a status code (see ``driver`` for the conventions; switches are always located)."""
-    A_s, b_s, relevance, contact = surfaces
-    istate, fstate, work = state
-    sample_t, sample_y = samples
+    buf = scratch(int(p[block_start(p) + 1]))
+    times = np.empty(5)
+    return exact_loop(p, y, t, t_end, surfaces, opts, state, samples, buf, times)
+
+
+@njit(cache=True)
+def exact_loop(p, y, t, t_end, surfaces, opts, state, samples, buf, times):
+    """``advance`` with its scratch (``buf``, node ``times``): the caller holds every array,
+    so the loop borrows them (``driver.borrowed``: no reference counting per step)."""
+    (p, y, opts), (A_s, b_s, relevance, contact), (istate, fstate, work), \
+        (sample_t, sample_y) = borrowed(p, y, opts, surfaces, state, samples)
+    buf, times = borrow(buf), borrow(times)
+    surfaces = (A_s, b_s, relevance, contact)
     dim = y.shape[0]
     base = block_start(p)
-    aug = int(p[base + 1])
     w = p[base + 2]
-    buf = scratch(aug)
-    times = np.empty(5)
     sampling = opts[SAMPLE_DT] > 0.0
     steps, switches = 0, 0
     h_mode = 0.0
