@@ -15,8 +15,8 @@ not apply.
 rhs reads only its own leading entries): ``p[-1]`` is where the block starts, holding
 ``n_modes, aug, w, n_surfaces`` and per mode its step ``h_m``, ``G_m``, the quarter
 propagator ``exp(G_m h_m / 4)`` and the surfaces' rate matrix ``R_m = A G_m`` (row-major).
-``h_m`` turns the fastest mode of ``G_m`` by at most STEP_PHASE rad (and is at most T / 8),
-so a quarter step turns it by at most 0.5 rad.
+``h_m`` turns the fastest mode of ``G_m`` (the forcing's among them) by at most STEP_PHASE
+rad, so a quarter step turns it by at most 0.5 rad and a step is at most T / 4.
 
 A step is four quarter steps; at the five nodes the switching functions ``g = A y + b``
 and their rates ``g' = R_m Y`` are exact. A watched surface is crossed in a quarter when

@@ -23,7 +23,7 @@ from ..kernels.exact import HEADER, STEP_PHASE, expm
 from .base import System
 
 LINEARITY_TOL = 1e-9  # relative: the check on random states and times
-MIN_STEPS = 8  # steps per period at least (the other methods' largest step is T / 8)
+MIN_STEPS = 4  # steps per period at least (what STEP_PHASE gives the forcing itself)
 
 
 def _rhs(system: System, params: np.ndarray, t: float, y: np.ndarray, mode: int) -> np.ndarray:
@@ -78,8 +78,10 @@ def probe_states(system: System, params: np.ndarray, mode: int):
 
 
 def mode_step(G: np.ndarray, period: float) -> float:
-    """The mode's step: its fastest mode turns at most STEP_PHASE rad, at most T / 8, and
-    a whole number of steps per period (a period without switches lands exactly)."""
+    """The mode's step: its fastest mode turns at most STEP_PHASE rad, and a whole number
+    of steps per period (a period without switches lands exactly). The forcing is one of
+    G's modes (eigenvalues +-i w), so a step is at most T / 4 (a quarter step turns the
+    forcing by at most pi / 8 rad)."""
     rho = float(np.max(np.abs(np.linalg.eigvals(G))))
     return period / max(MIN_STEPS, ceil(period * rho / STEP_PHASE))
 

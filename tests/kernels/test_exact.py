@@ -126,7 +126,7 @@ def test_landing_anywhere_and_continuing_is_one_flow():
 def test_a_grazing_excursion_shorter_than_a_quarter_step_is_found():
     # on the linear steady state x dips to -A; the second spring's surface x = -d1 sits
     # 1e-6 inside that dip: each period the trajectory crosses it for ~0.005 time units
-    # (a free-flight step here is T / 8 ~ 0.9), so only the extremum search can see it
+    # (a free-flight step here is T / 4 ~ 1.8), so only the extremum search can see it
     values = dict(BILINEAR_BODY, F=0.1)
     c, k1, F, w = values["c"], values["k1"], values["F"], values["w"]
     amplitude = F / np.hypot(k1 - w * w, c * w)
