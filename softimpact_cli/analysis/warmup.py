@@ -173,29 +173,58 @@ def _run_steps(model: str | None, verbose: bool) -> list[Step]:
     return done
 
 
-def compile_all(verbose: bool = False) -> list[Step]:
+def _run_step(index: int) -> Step:
+    """Warm-up step number ``index`` (in a worker process)."""
+    what, run = _steps()[index]
+    start = time.perf_counter()
+    run()
+    return Step(what, time.perf_counter() - start)
+
+
+def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]:
     """Run every warm-up step (each compiles what is not cached yet); their wall times.
 
-    In this one process, one step after another. Compiling the models in parallel
-    processes corrupted the cache: two processes adding an entry to the index of a shared
-    kernel (``rosenbrock.refine_crossing``) at the same moment both name their code file
-    by the same next number, so one model's index entry can end up pointing at the code
-    compiled for the other's right-hand side; a later run then failed to type the call
-    (seen once in a clean-clone CI run, 2026-11-25). Serial compiling takes longer, once
-    per installed version: 287 s in all on 2 cores (clean clone, 2026-11-25).
+    ``workers`` processes (default: one per core, at most the steps) take the steps in
+    turn. They compile into one folder at once, which numba's own cache saves do not
+    survive: two processes adding an entry to one kernel's index together could leave one
+    model's entry naming the other's code (seen in a clean-clone CI run, 2026-11-25, when
+    the models compiled in parallel without a lock); ``kernels.numba_cache`` therefore
+    saves under a lock. Without POSIX locks, or with ``workers = 1``, one step after
+    another in this process: 414 s on 2 cores (2026-11-26), against about half that in
+    two processes.
     """
-    return _run_steps(None, verbose)
+    import os
+
+    from ..kernels.numba_cache import SAVES_LOCKED
+
+    steps = _steps()
+    workers = min(workers or os.cpu_count() or 1, len(steps))
+    if workers <= 1 or not SAVES_LOCKED:
+        return _run_steps(None, verbose)
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    done = []
+    context = multiprocessing.get_context("spawn")  # fresh processes: nothing compiled yet
+    with ProcessPoolExecutor(workers, mp_context=context) as pool:
+        for step in pool.map(_run_step, range(len(steps))):
+            done.append(step)
+            if verbose:
+                print(f"  {step.what}: {step.seconds:.1f} s", file=sys.stderr, flush=True)
+    return done
 
 
 def main(argv: list[str] | None = None) -> int:
     """``python -m softimpact_cli.analysis.warmup``: compile every kernel into the disk cache."""
-    quiet = "-q" in (argv if argv is not None else sys.argv[1:])
+    args = argv if argv is not None else sys.argv[1:]
+    quiet = "-q" in args
+    workers = 1 if "--serial" in args else None
     folder = cache_folder()
     if not quiet:
         print(f"softimpact: compiling numerical kernels into {folder} (a few minutes, once "
               "per installed version)", file=sys.stderr, flush=True)
     start = time.perf_counter()
-    compile_all(verbose=not quiet)
+    compile_all(verbose=not quiet, workers=workers)
     print(f"softimpact: kernels compiled and cached in {time.perf_counter() - start:.0f} s "
           f"({folder})", file=sys.stderr)
     return 0

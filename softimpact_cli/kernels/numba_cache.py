@@ -24,6 +24,11 @@ from its qualified name, before anything pickles it, makes the rebuilt key resol
 the live dispatcher in every process. This relies on numba's ``_MemoMixin._set_uuid``
 (present since numba 0.49); ``tests/kernels/test_numba_cache.py`` checks the behaviour
 across processes.
+
+**Saving from several processes.** numba's save of a new entry is not safe against
+another process saving into the same index at once; ``lock_cache_saves`` (applied on
+import) serialises saves with a POSIX lock per index, so the warm-up and test workers can
+compile into one folder together (see ``_locked_save``).
 """
 
 from __future__ import annotations
@@ -36,7 +41,13 @@ from pathlib import Path
 from types import ModuleType
 
 import numba
+from numba.core.caching import IndexDataCacheFile
 from numba.core.dispatcher import Dispatcher
+
+try:
+    import fcntl
+except ImportError:  # no POSIX locks (Windows): saves stay numba's own
+    fcntl = None
 
 PACKAGE = Path(__file__).resolve().parents[1]  # softimpact_cli/
 SOURCES = ("kernels", "systems")  # the folders whose files key the cache
@@ -86,3 +97,60 @@ def stabilise(module: ModuleType) -> None:
             continue
         if getattr(obj, "_MemoMixin__uuid", None) is None:
             obj._set_uuid(f"softimpact:{module.__name__}.{name}")
+
+
+# ---------------------------------------------------------------------------------------
+# saving under a lock: several processes may compile into one folder at once
+
+
+# numba's own save (kept across a reload of this module, which must not wrap it twice)
+_numba_save = getattr(IndexDataCacheFile, "_softimpact_numba_save", IndexDataCacheFile.save)
+
+
+def _locked_save(self, key, data):
+    """numba's ``IndexDataCacheFile.save`` holding an exclusive lock on the index, and
+    writing the code before the index entry that names it.
+
+    numba reads the index, takes the first free file number, and writes the index and the
+    code file, with nothing held between: two processes saving new entries of one kernel
+    at once (two models' ``orbit.classify_near``) both take the same number, and one
+    model's index entry can end up naming the other's code (a later run then fails to
+    type the call). Under the lock the two saves follow one another. Readers need no
+    lock: every file is replaced whole (``os.replace``), and an index entry is written
+    only after its code.
+    """
+    try:
+        lock = open(self._index_path + ".lock", "a")  # noqa: SIM115 (closed below)
+    except OSError:  # a folder we may not write in: numba's save says why, if it fails
+        return _numba_save(self, key, data)
+    with lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            overloads = self._load_index()
+            data_name = overloads.get(key)
+            if data_name is None:
+                existing = set(overloads.values())
+                number = 1
+                while self._data_name(number) in existing:
+                    number += 1
+                data_name = self._data_name(number)
+                self._save_data(data_name, data)
+                overloads[key] = data_name
+                self._save_index(overloads)
+            else:
+                self._save_data(data_name, data)
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
+def lock_cache_saves() -> bool:
+    """Make numba's cache saves safe across processes (``_locked_save``); False where
+    there are no POSIX locks (then compile in one process at a time)."""
+    if fcntl is None:
+        return False
+    IndexDataCacheFile._softimpact_numba_save = _numba_save
+    IndexDataCacheFile.save = _locked_save
+    return True
+
+
+SAVES_LOCKED = lock_cache_saves()

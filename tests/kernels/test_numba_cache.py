@@ -127,3 +127,41 @@ def test_every_jitted_function_caches_in_the_source_keyed_folder():
                     if not obj._cache._cache_path.startswith(folder):
                         elsewhere.append(f"{module.__name__}.{name}")
     assert found > 40 and elsewhere == []
+
+
+SAVER = """
+import sys
+import softimpact_cli.kernels  # applies the locked save (unless argv[3] says not to)
+from numba.core.caching import IndexDataCacheFile
+if sys.argv[3] == "numba":
+    IndexDataCacheFile.save = IndexDataCacheFile._softimpact_numba_save
+cache = IndexDataCacheFile(sys.argv[1], "kernel", ("stamp", 1))
+for k in range(40):
+    key = f"{sys.argv[2]}-{k}"
+    cache.save(key, key)  # the code of a key is its own name
+"""
+
+
+def save_together(folder, how: str) -> tuple[int, int]:
+    """Four processes save 40 new entries each into one index at once; (entries in the
+    index, entries whose code is another's)."""
+    from numba.core.caching import IndexDataCacheFile
+
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(folder / "numba")}
+    procs = [subprocess.Popen([sys.executable, "-c", SAVER, str(folder), f"p{i}", how],
+                              env=env) for i in range(4)]
+    assert all(p.wait() == 0 for p in procs)
+    cache = IndexDataCacheFile(str(folder), "kernel", ("stamp", 1))
+    keys = [f"p{i}-{k}" for i in range(4) for k in range(40)]
+    loaded = {key: cache.load(key) for key in keys}
+    return (sum(v is not None for v in loaded.values()),
+            sum(v is not None and v != key for key, v in loaded.items()))
+
+
+def test_processes_saving_into_one_index_keep_every_entry_with_its_own_code(tmp_path):
+    # numba alone loses entries and can point one process's entry at another's code (the
+    # cache corruption of parallel compiling); the locked save keeps all 160, each right
+    from softimpact_cli.kernels.numba_cache import SAVES_LOCKED
+
+    assert SAVES_LOCKED
+    assert save_together(tmp_path, "locked") == (160, 0)
