@@ -145,6 +145,13 @@ def cold_compile() -> float:
         return time.perf_counter() - t
 
 
+def compiled_at_install() -> bool:
+    """Whether ``make install`` runs the kernel warm-up (its recipe, read from the Makefile)."""
+    text = (ROOT / "Makefile").read_text()
+    recipe = text.split("$(STAMP): pyproject.toml", 1)[-1].split("\n\n", 1)[0]
+    return "softimpact_cli.analysis.warmup" in recipe
+
+
 def pct(same: int, n: int) -> str:
     return f"{100 * same / n:.1f} % ({same}/{n})"
 
@@ -213,8 +220,11 @@ def main(argv=None) -> int:
                     f"{ratio:.1f}x", ratio <= 2.5))
     if args.cold:
         cold = cold_compile()
-        targets.append(("cold start, every kernel compiled: <= 60 s (or at install)",
-                        f"{cold:.0f} s (done once by `make install`)", cold <= 60))
+        at_install = compiled_at_install()
+        targets.append(("cold start, every kernel compiled: <= 60 s, or done once at install",
+                        f"{cold:.0f} s on {os.cpu_count()} cores"
+                        + (", done once by `make install`" if at_install else ""),
+                        cold <= 60 or at_install))
     lines = ["# Issue 15 targets", "", f"Command: `.venv/bin/python {command.strip()}`", "",
              f"Machine: {machine()}. Date: {time.strftime('%Y-%m-%d %H:%M')}. Load average "
              f"at start {start_load}, at end {load()} (a shared machine: timings indicative).",
