@@ -258,3 +258,19 @@ def test_hunt_crossley_basins_and_trajectory_end_to_end(tmp_path):
         assert ds.attrs["outcome"] == "converged"
         assert ds["section_contacts"].sum() > 0
         assert "exponent=2.0" in ds.attrs["parameters"]
+
+
+def test_only_the_command_collects_garbage_less_often():
+    # the `softimpact` script raises the collector's threshold from its first import on; a
+    # program importing the package (a notebook, a test) keeps its own
+    import subprocess
+    import sys
+
+    def threshold(argv0: str, load: bool) -> str:
+        code = (f"import sys; sys.argv[0] = {argv0!r}; import gc; "
+                + ("import softimpact_cli; " if load else "") + "print(*gc.get_threshold())")
+        return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                              check=True).stdout.strip()
+
+    assert threshold("/x/.venv/bin/softimpact", True) == "50000 20 20"
+    assert threshold("notebook", True) == threshold("notebook", False)
