@@ -39,9 +39,9 @@ from math import cos, sin
 import numpy as np
 from numba import njit
 
+from .borrow import borrow
 from .codes import DIVERGED, OK, STEP_BUDGET
 from .common import apply_switch, out_of_bounds
-from .borrow import borrow
 from .driver import borrowed, stopped_at_switch
 from .layout import (
     BOUND,
