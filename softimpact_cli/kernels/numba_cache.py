@@ -143,10 +143,22 @@ def _locked_save(self, key, data):
             fcntl.flock(lock, fcntl.LOCK_UN)
 
 
+# what ``_locked_save`` uses of numba's class (as in numba 0.68; checked, so that
+# another layout leaves numba's save in place instead of failing at the first save)
+_NUMBA_PARTS = ("_index_path", "_load_index", "_save_index", "_save_data", "_data_name")
+
+
 def lock_cache_saves() -> bool:
     """Make numba's cache saves safe across processes (``_locked_save``); False where
-    there are no POSIX locks (then compile in one process at a time)."""
+    there are no POSIX locks or numba's cache file is not as expected (then compile in one
+    process at a time)."""
     if fcntl is None:
+        return False
+    try:  # (its constructor only sets attributes)
+        probe = IndexDataCacheFile("", "probe", None)
+    except TypeError:
+        return False
+    if not all(hasattr(probe, part) for part in _NUMBA_PARTS):
         return False
     IndexDataCacheFile._softimpact_numba_save = _numba_save
     IndexDataCacheFile.save = _locked_save
