@@ -26,7 +26,8 @@ $(STAMP): pyproject.toml
 test: $(STAMP)
 	$(PY) -m pytest -n 2 $(PYTEST_ARGS)
 
-# The suite without the tests marked slow, on both cores: under 3 minutes.
+# The suite without the tests marked slow, on both cores: about 3.5 minutes (3 min 38 s,
+# 2026-11-26).
 test-fast: $(STAMP)
 	$(PY) -m pytest -m "not slow" -n 2 $(PYTEST_ARGS)
 
