@@ -16,8 +16,8 @@ import sys as _sys  # noqa: E402
 # The `softimpact` command collects cyclic garbage less often, from its first import on:
 # the imports and a small sweep make millions of short-lived container objects (numba's,
 # xarray's, pandas'), and at CPython's default first threshold (700) the collector took
-# ~0.2 s of a 2 s 10 x 10 sweep (1.83-1.90 s against 2.07-2.15 s, 2026-11-26). A program
-# that imports the package keeps its own settings.
+# 0.07-0.2 s of a 2 s 10 x 10 sweep (two A/B runs, 2026-11-26). A program that imports
+# the package keeps its own settings.
 COMMAND_GC_THRESHOLD = (50_000, 20, 20)
 if _sys.argv and _os.path.basename(_sys.argv[0]) == "softimpact":
     _gc.set_threshold(*COMMAND_GC_THRESHOLD)
