@@ -162,23 +162,25 @@ def _steps(model: str | None = None) -> list:
     return steps
 
 
+def _timed(what: str, run) -> Step:
+    start = time.perf_counter()
+    run()
+    return Step(what, time.perf_counter() - start)
+
+
+def _report(step: Step, verbose: bool) -> Step:
+    if verbose:
+        print(f"  {step.what}: {step.seconds:.1f} s", file=sys.stderr, flush=True)
+    return step
+
+
 def _run_steps(model: str | None, verbose: bool) -> list[Step]:
-    done = []
-    for what, run in _steps(model):
-        start = time.perf_counter()
-        run()
-        done.append(Step(what, time.perf_counter() - start))
-        if verbose:
-            print(f"  {what}: {done[-1].seconds:.1f} s", file=sys.stderr, flush=True)
-    return done
+    return [_report(_timed(what, run), verbose) for what, run in _steps(model)]
 
 
 def _run_step(index: int) -> Step:
     """Warm-up step number ``index`` (in a worker process)."""
-    what, run = _steps()[index]
-    start = time.perf_counter()
-    run()
-    return Step(what, time.perf_counter() - start)
+    return _timed(*_steps()[index])
 
 
 def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]:
@@ -204,14 +206,9 @@ def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
-    done = []
     context = multiprocessing.get_context("spawn")  # fresh processes: nothing compiled yet
     with ProcessPoolExecutor(workers, mp_context=context) as pool:
-        for step in pool.map(_run_step, range(len(steps))):
-            done.append(step)
-            if verbose:
-                print(f"  {step.what}: {step.seconds:.1f} s", file=sys.stderr, flush=True)
-    return done
+        return [_report(step, verbose) for step in pool.map(_run_step, range(len(steps)))]
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -150,30 +150,38 @@ def forcing_columns(n, i):
     return 0 if i < n - 3 else n - 3
 
 
+@njit(cache=True, inline="always")
+def taylor_term(G, buf, src, dst, delta, k):
+    """Row ``dst`` = the Taylor term after row ``src``: ``G buf[src] delta / k``; its
+    largest magnitude (the series' stopping test)."""
+    n = G.shape[0]
+    biggest = 0.0
+    for i in range(n):
+        s = 0.0
+        for j in range(forcing_columns(n, i), n):
+            s += G[i, j] * buf[src, j]
+        buf[dst, i] = s * delta / k
+        biggest = max(biggest, abs(buf[dst, i]))
+    return biggest
+
+
 @njit(cache=True)
 def taylor_flow(G, buf, start, delta):
     """The augmented state ``delta`` after row ``start`` of ``buf``, into row FLOW (a short
     time: the series converges fast)."""
     n = G.shape[0]
-    for i in range(n):
-        buf[FLOW, i] = buf[start, i]
-        buf[TERM, i] = buf[start, i]
     size = 0.0
     for i in range(n):
+        buf[FLOW, i] = buf[start, i]
         size = max(size, abs(buf[start, i]))
+    src, dst = start, TERM
     for k in range(1, TAYLOR_TERMS):
-        biggest = 0.0
+        biggest = taylor_term(G, buf, src, dst, delta, k)
         for i in range(n):
-            s = 0.0
-            for j in range(forcing_columns(n, i), n):
-                s += G[i, j] * buf[TERM, j]
-            buf[TMP, i] = s * delta / k
-            biggest = max(biggest, abs(buf[TMP, i]))
-        for i in range(n):
-            buf[TERM, i] = buf[TMP, i]
-            buf[FLOW, i] += buf[TMP, i]
+            buf[FLOW, i] += buf[dst, i]
         if biggest <= 1e-17 * size:
             break
+        src, dst = dst, TERM + TMP - dst  # the two term rows in turn
 
 
 @njit(cache=True, inline="always")
@@ -259,14 +267,7 @@ def quarter_series(G, buf, start, span):
         size = max(size, abs(buf[start, i]))
     terms = TAYLOR_TERMS
     for k in range(1, TAYLOR_TERMS):
-        biggest = 0.0
-        for i in range(n):
-            s = 0.0
-            for j in range(forcing_columns(n, i), n):
-                s += G[i, j] * buf[SERIES + k - 1, j]
-            buf[SERIES + k, i] = s * span / k
-            biggest = max(biggest, abs(buf[SERIES + k, i]))
-        if biggest <= 1e-17 * size:
+        if taylor_term(G, buf, SERIES + k - 1, SERIES + k, span, k) <= 1e-17 * size:
             terms = k + 1
             break
     buf[KEY, KEY_START] = start
