@@ -8,14 +8,14 @@ PYTEST_ARGS ?=
 .DEFAULT_GOAL := help
 
 .PHONY: help install test test-fast test-nojit demo trajectory lint clean bench bench-precision \
-	catalogues fig04 fig10 fig13-catalogue
+	catalogues fig04 fig10 fig13-catalogue docs docs-check
 
 install: $(STAMP)
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,dask]'
+	$(PY) -m pip install --quiet -e '.[test,dask,docs]'
 	$(PY) -m softimpact_cli.analysis.warmup
 	touch $(STAMP)
 
@@ -275,6 +275,13 @@ bench-compare: $(STAMP)
 	status=$$?; rm -rf $$base; exit $$status
 .PHONY: bench-compare
 
+# The documentation site (docs/, mkdocs.yml) into site/, offline and strict: a broken link,
+# anchor or API reference fails the build. The tutorials run while it builds (each a few
+# seconds), the scene-key and command references are generated from the code. Read it
+# with a browser at site/index.html. tests/docs/test_site.py runs the same build.
+docs: $(STAMP)
+	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict --quiet
+
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 
@@ -304,6 +311,8 @@ help:
 	@echo "  test-fast         the suite without the tests marked slow"
 	@echo "  test-nojit        the suite without numba compilation (slow; for debugging)"
 	@echo "  lint              ruff"
+	@echo "  docs              the documentation site -> site/ (strict; runs the tutorials)"
+	@echo "  docs-check        docs, then every page in headless Chromium (screenshots)"
 	@echo "  trajectory        configs/trajectory_duffing.toml -> results/trajectory.{h5,png}"
 	@echo "  figures           every figure of the study (QUICK=1: low resolution, for CI)"
 	@echo "  catalogues fig03 fig04 fig05 fig06 fig07 fig09 fig10 fig11 fig12 fig13"

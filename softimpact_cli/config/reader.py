@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import difflib
 import math
 import os
@@ -22,6 +23,27 @@ class ConfigError(ValueError):
 # ---------------------------------------------------------------- small checkers
 
 
+# What the reader reads, recorded while ``recording()`` is active: the scene-key reference
+# (softimpact_cli.kinds.key_reference) is generated from it, so the documentation is the
+# reader's own schema. {(section, key): {"type", "default", "allowed"}}; off (None) in use.
+_RECORDED: dict[tuple[str, str], dict[str, Any]] | None = None
+
+
+@contextlib.contextmanager
+def recording():
+    """Record every key a Section reads (its type, default and allowed values) and every
+    key its ``finish`` allows, in the dict this yields; nested calls share one record."""
+    global _RECORDED
+    outer = _RECORDED
+    if outer is None:
+        _RECORDED = {}
+    try:
+        yield _RECORDED
+    finally:
+        if outer is None:
+            _RECORDED = None
+
+
 class Section:
     """Reads keys of one TOML table, tracking which ones were used."""
 
@@ -30,6 +52,15 @@ class Section:
         self.name = name
         self.table = dict(table)
         self.used: set[str] = set()
+
+    def _note(self, key: str, weak: bool = False, **traits: Any) -> None:
+        """Record ``key``'s traits (type, default, allowed) while ``recording()``; weak
+        traits (what ``raw`` knows) do not replace those a typed reader recorded."""
+        if _RECORDED is not None:
+            entry = _RECORDED.setdefault((self.name, key), {})
+            for name, value in traits.items():
+                if not (weak and name in entry):
+                    entry[name] = value
 
     def fail(self, key: str | None, problem: str) -> ConfigError:
         where = f"[{self.name}]" + (f" {key}" if key else "")
@@ -41,11 +72,14 @@ class Section:
         return key in self.table
 
     def raw(self, key: str, default: Any = None) -> Any:
+        self._note(key, weak=True, type="value", default=default)
         self.used.add(key)
         return self.table.get(key, default)
 
     def number(self, key: str, default: float | None, check: Callable[[float], str | None]
                | None = None) -> float:
+        self._note(key, type="number", default=default,
+                   allowed=check_text(check))
         value = self.raw(key, default)
         if value is None:
             raise self.fail(key, "is required (a number)")
@@ -61,6 +95,8 @@ class Section:
         return value
 
     def integer(self, key: str, default: int, minimum: int, maximum: int | None = None) -> int:
+        self._note(key, type="integer", default=default,
+                   allowed=f">= {minimum}" if maximum is None else f"{minimum} .. {maximum}")
         value = self.raw(key, default)
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.fail(key, f"must be a whole number, got {value!r}")
@@ -70,6 +106,8 @@ class Section:
         return value
 
     def choice(self, key: str, default: str, allowed: tuple[str, ...]) -> str:
+        self._note(key, type="choice", default=default,
+                   allowed=" | ".join(map(repr, allowed)))
         value = self.raw(key, default)
         if value not in allowed:
             hint = did_you_mean(str(value), allowed)
@@ -78,12 +116,14 @@ class Section:
         return value
 
     def boolean(self, key: str, default: bool) -> bool:
+        self._note(key, type="boolean", default=default, allowed="true | false")
         value = self.raw(key, default)
         if not isinstance(value, bool):
             raise self.fail(key, f"must be true or false, got {value!r}")
         return value
 
     def multiple(self, key: str, default: float, symbol: str, unit: float) -> float:
+        self._note(key, type=f'number or "a*{symbol}/b"', default=default)
         value = self.raw(key, default)
         try:
             return parse_multiple(value, symbol, unit)
@@ -91,12 +131,24 @@ class Section:
             raise self.fail(key, str(exc)) from None
 
     def finish(self, allowed: tuple[str, ...] | None = None) -> None:
+        for key in allowed or ():
+            self._note(key)
         unknown = sorted(set(self.table) - self.used)
         if unknown:
             key = unknown[0]
             pool = allowed if allowed is not None else tuple(sorted(self.used))
             hint = did_you_mean(key, pool)
             raise self.fail(key, f"unknown key{hint}; allowed: {', '.join(sorted(pool))}")
+
+
+def check_text(check: Callable | None) -> str | None:
+    """What a number check allows, as its own message says ("must be > 0" -> "> 0"): the
+    "must be ..." texts among the check function's constants (None when it has none)."""
+    code = getattr(check, "__code__", None)
+    texts = [c for c in (code.co_consts if code else ()) if isinstance(c, str)
+             and c.startswith("must be ") and c.count("[") + c.count("(")
+             == c.count("]") + c.count(")")]  # whole texts, not an f-string's pieces
+    return "; ".join(c.removeprefix("must be ") for c in texts) or None
 
 
 def did_you_mean(word: str, options) -> str:

@@ -123,6 +123,7 @@ class AnalysisKind:
     needs_attractors : the sweep stops before any chunk when the catalogue is empty
     searches_attractors : runs the attractor search without a [catalogue] section
     plot : its figure (``softimpact plot <kind>``), a PlotSpec
+    keys : what each of its ``[analysis]`` keys means (the scene-key reference)
     """
 
     name: str
@@ -146,6 +147,9 @@ class AnalysisKind:
     searches_attractors: bool = False
     progress_unit: str = "steps"
     options: tuple[str, ...] = field(default=())  # run options it takes (workers, ...)
+    # its [analysis] keys: name -> meaning (the scene-key reference is generated from the
+    # reader and these; tests/docs/test_key_reference.py fails on a key without one)
+    keys: Mapping[str, str] = field(default_factory=dict)
     plot: PlotSpec | None = None
 
     def figure_function(self) -> Callable[..., Any]:

@@ -126,9 +126,18 @@ def compare_text(report: dict, max_points: int) -> list[str]:
     return bifurcation_comparison_text(report)
 
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "start": "the first gap d",
+    "stop": "the last gap d",
+    "step": "the step in d",
+    "branches": 'the solutions followed, by name (default: every non-impacting one)',
+}
+
 KINDS = (AnalysisKind("bifurcation", "each solution followed along d, destruction points "
                       "located", read, plan, sections=sections, shrink=shrink, run=run,
                       check=check, info_after=info_lines, compare=compare,
                       compare_text=compare_text, progress_unit="branches",
-                      plot=PlotSpec("Section displacements of both bodies against d, "
+                      keys=KEYS, plot=PlotSpec("Section displacements of both bodies against d, "
                                     "destruction points marked.")),)

@@ -72,8 +72,20 @@ def report(ds) -> str:
     return format_catalogue(ds)
 
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "box": "where the starts are drawn: {x = [lo, hi], v = [lo, hi]}",
+    "grid": "a grid x grid lattice of starts ...",
+    "random": "... plus this many random starts",
+    "seed": "seed of the random starts",
+    "t0": 'the time at which the state is imposed: a number or "a*T/b" (the section stays at t = '
+          '0 mod T)',
+    "match_tol": "two orbits closer than this on the section are one attractor",
+}
+
 KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
                       read, plan, run=run, summary=summary, report=report,
                       searches_attractors=True, progress_unit="initial conditions",
-                      plot=PlotSpec("Attractors on the phase plane and one panel per "
+                      keys=KEYS, plot=PlotSpec("Attractors on the phase plane and one panel per "
                                     "combination of a catalogue RESULT.")),)

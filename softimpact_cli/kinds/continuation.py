@@ -191,12 +191,33 @@ def report(ds) -> str:
     return format_continuation(ds)
 
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "parameter": "the continued parameter (its value in the scene is where the branches start)",
+    "low": "the lower end of the continued range",
+    "high": "the upper end",
+    "start": '"catalogue" (every catalogue orbit, or branches) or "state" (Newton from state)',
+    "state": 'start = "state": a point near the orbit at t = 0: [x1, v1, x2, v2] ([x, v] for one '
+             "body)",
+    "branches": 'catalogue names of the orbits to follow, like "L1^1" or "L1^1 R1-0^2" (default: '
+                'all)',
+    "step": "the first arclength step",
+    "min_step": "the smallest step before a branch ends",
+    "max_step": "the largest step",
+    "max_points": "points per branch at most",
+    "tolerance": "Newton tolerance of the corrector",
+    "switch_depth": "how many generations of branches born at bifurcation points are followed",
+    "brute_force_step": "step of a brute-force sweep up and down for comparison (0: off)",
+}
+
 KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and unstable) "
                       "followed in one parameter; folds, period doublings, Neimark-Sacker "
                       "and grazing located", read, plan, sections=sections, shrink=shrink,
                       run=run, summary=summary, report=report,
                       info_after=lambda ds: report(ds).splitlines(),
                       progress_unit="branches",
+                      keys=KEYS,
                       plot=PlotSpec("Branches against the parameter (stable solid, unstable "
                                     "dashed, bifurcations marked, brute-force points "
                                     "overlaid) and their Floquet multipliers.")),)

@@ -131,7 +131,14 @@ PLOT = PlotSpec(
     options=(PlotOption("--combination", "combination",
                         "Draw only this combination's x1 - x2 traces (default: all)."),))
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "traces": 'phases at which x1 - x2 over one period is stored, e.g. ["pi/4", "pi"]',
+    "samples": "points per period of the stored traces",
+}
+
 KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
                       plan, sections=sections, shrink=shrink, run=run, check=check,
                       compare=compare, compare_text=compare_text, progress_unit="phases",
-                      plot=PLOT),)
+                      keys=KEYS, plot=PLOT),)

@@ -128,11 +128,36 @@ def outcome_counts(ds):
     return design_counts(ds)
 
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "target": 'the solution that should survive alone (or --target); a non-impacting combination',
+    "bounds": '{d = [lo, hi], phi = [lo, hi], k_c = [lo, hi], c_c = [lo, hi]}; k_c, c_c left out: '
+              'fixed at [coupling]; lo = hi fixes',
+    "candidates": "points screened inside the region",
+    "screen_n": "samples per screened point (the first of [initial_conditions] n)",
+    "refine": "best screened points verified on all n samples",
+    "robust_n": "samples per perturbed point (default: n)",
+    "perturbation": "robustness steps: +- this relative change of d, k_c, c_c; +- this times pi "
+                    "of phi",
+    "perturbation_steps": "perturbation steps on each side",
+    "min_margin": "every candidate tolerates at least this relative change",
+    "phi_points": "critical-distance grid over [0, 2 pi)",
+    "reference": 'a point verified beside the pick, e.g. {d = 5.0, phi = "pi", k_c = 8.0, c_c = '
+                 '10.0}',
+    "seed": "rotates the candidate set",
+    "label_tol": "a trajectory whose section points lie this close to a catalogue orbit takes its "
+                 "label",
+    "shock_directions": "directions of the minimal fatal shock at the pick and the reference (0: "
+                        "off)",
+}
+
 KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target survives (see "
                       "design)", read, plan, sections=sections, run=run, summary=summary,
                       report=report, info_lines=info_lines, info_catalogue=False,
                       outcome_counts=outcome_counts, progress_unit="trajectories",
                       options=("workers", "scheduler", "echo"),
+                      keys=KEYS,
                       plot=PlotSpec("The (d, phi) plane with the target-only region, the "
                                     "pick and runners-up, beside the basin stability at "
                                     "the pick and under perturbations.")),)

@@ -116,9 +116,22 @@ def info_lines(ds) -> list[str]:
     return fatal_shock_lines(ds)
 
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "solution": 'the solution to knock off, by name ("L1^1 R1-0^1")',
+    "phases": "points of its orbit (over one period) where kicks are tried",
+    "directions": "unit directions of the kick (random on the sphere; evenly spaced angles for "
+                  "one body)",
+    "max_shock": "largest kick magnitude scanned",
+    "scan": "magnitudes scanned up to max_shock before the bisection",
+    "tol": "bisection tolerance of the fatal magnitude",
+    "seed": "seed of the random directions",
+}
+
 KINDS = (AnalysisKind(
     "fatal_shock", "minimal fatal shock: the smallest kick that sends a solution elsewhere",
     read, plan, sections=sections, run=run, summary=summary, info_lines=info_lines,
     info_catalogue=False, options=("workers",), progress_unit="phases",
-    plot=PlotSpec("The fatal shocks of a fatal_shock RESULT against the phase of the "
+    keys=KEYS, plot=PlotSpec("The fatal shocks of a fatal_shock RESULT against the phase of the "
                   "orbit: the smallest over directions, the median and the quartiles.")),)

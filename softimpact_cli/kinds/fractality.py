@@ -120,11 +120,23 @@ def report(ds) -> str:
     return "\n".join(info_after(ds))
 
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "box_sizes": "box sizes (cells) of the basin entropy (default: from the plane)",
+    "radii": "perturbation radii (cells) of the uncertainty exponent (default: from the plane)",
+    "wada_radius": "cells a basin is grown by in the Wada merging test",
+    "wada_tol": "share of boundary cells allowed to miss a basin in the Wada test",
+    "label_tol": "a trajectory whose section points lie this close to a catalogue orbit takes its "
+                 "label",
+}
+
 KINDS = (AnalysisKind(
     "fractality", "basin entropy, uncertainty exponent and Wada test of a plane",
     read, plan, sections=sections, run=run, summary=summary, report=report,
     info_after=info_after, info_catalogue=False, progress_unit="trajectories",
     options=("workers", "scheduler", "echo"),
+    keys=KEYS,
     plot=PlotSpec("S_b and S_bb against the box size, the uncertainty fit and the Wada map "
                   "of a fractality RESULT (softimpact measure), one row per plane.",
                   options=(PlotOption("--max-panels", "max_panels", "Largest number of "

@@ -155,11 +155,28 @@ def report(ds) -> str:
     return format_lyapunov(ds)
 
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "start": '"state" (from state) or "catalogue" (every catalogue solution, Floquet exponents '
+             'beside)',
+    "state": 'start = "state": the initial state: [x1, v1, x2, v2] ([x, v] for one body)',
+    "t0": 'the time at which the state is imposed: a number or "a*T/b" (the section stays at t = '
+          '0 mod T)',
+    "transient": "forcing periods discarded (state and tangent vectors settle)",
+    "periods": "periods averaged, in segments equal segments",
+    "segments": "their spread gives the standard error (periods a multiple of it)",
+    "per_period": "Gram-Schmidt re-orthonormalisations per period",
+    "saltation": "apply the saltation matrix at switches (false: wrong; for comparison)",
+    "follow": "with [grid]: each value starts from the last one's end state",
+}
+
 KINDS = (AnalysisKind("lyapunov", "Lyapunov exponents (Benettin, saltation at switches) of "
                       "a trajectory, of catalogue solutions or along a parameter", read, plan,
                       sections=sections, shrink=shrink, run=run, summary=summary,
                       report=report, info_after=lambda ds: report(ds).splitlines(),
                       progress_unit="spectra",
+                      keys=KEYS,
                       plot=PlotSpec("Lyapunov exponents with their standard errors (against "
                                     "the parameter, beside the section states, for a grid "
                                     "run).")),)

@@ -134,12 +134,19 @@ PLOTS = {
                     "parameters.", complete=True),
 }
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "label_tol": "a trajectory whose section points lie this close to a catalogue orbit takes its "
+                 "label",
+}
+
 KINDS = tuple(
     AnalysisKind(name, description, _reader(name), plan, sections=sections, shrink=shrink,
                  check=check, summary=summarise, after_sweep=after,
                  outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
                  needs_attractors=name == "map",  # its counts need d_crit
-                 progress_unit="trajectories", plot=PLOTS[name])
+                 progress_unit="trajectories", keys=KEYS, plot=PLOTS[name])
     for name, description, summarise, after in (
         ("basins", "the label of every start on a plane, at every [grid] point", summary,
          None),

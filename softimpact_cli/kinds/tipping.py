@@ -16,6 +16,7 @@ import numpy as np
 from ..config.reader import ConfigError
 from . import AnalysisKind, PlotOption, PlotSpec, Sections
 from .sweeps import (
+    KEYS,
     SHOW_ERROR,
     _reader,
     check,
@@ -97,6 +98,7 @@ KINDS = (AnalysisKind(
     summary=summary, after_sweep=add_tipping, info_after=info_after,
     outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
     progress_unit="trajectories",
+    keys=KEYS,
     plot=PlotSpec("The tipping matrix of a tipping RESULT (and, over a plane, the basins "
                   "before and after).", complete=True,
                   options=(PlotOption("--no-basins", "no_basins", "Leave out the basin "

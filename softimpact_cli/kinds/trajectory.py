@@ -57,5 +57,15 @@ PLOT = PlotSpec(
     options=(PlotOption("--last-periods", "last_periods", "Periods drawn strongly as the "
                         "steady state (default: a quarter, <= 20).", kind="int>=1"),))
 
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "state": "the initial state: [x1, v1, x2, v2] ([x, v] for one body)",
+    "periods": "forcing periods integrated",
+    "t0": 'the time at which the state is imposed: a number or "a*T/b" (the section stays at t = '
+          '0 mod T)',
+    "samples_per_period": "points recorded per forcing period",
+}
+
 KINDS = (AnalysisKind("trajectory", "one trajectory, recorded and classified", read, plan,
-                      run=run, plot=PLOT),)
+                      run=run, keys=KEYS, plot=PLOT),)

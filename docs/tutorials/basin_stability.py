@@ -1,0 +1,5 @@
+# %% [markdown]
+# # basin_stability
+
+# %%
+print(1)

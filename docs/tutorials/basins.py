@@ -1,0 +1,5 @@
+# %% [markdown]
+# # basins
+
+# %%
+print(1)

@@ -1,0 +1,5 @@
+# %% [markdown]
+# # batch_ci
+
+# %%
+print(1)

@@ -1,0 +1,5 @@
+# %% [markdown]
+# # bifurcation_continuation
+
+# %%
+print(1)

@@ -1,0 +1,5 @@
+# %% [markdown]
+# # design
+
+# %%
+print(1)

@@ -1,0 +1,5 @@
+# %% [markdown]
+# # fractality
+
+# %%
+print(1)

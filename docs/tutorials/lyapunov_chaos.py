@@ -1,0 +1,5 @@
+# %% [markdown]
+# # lyapunov_chaos
+
+# %%
+print(1)

@@ -1,0 +1,5 @@
+# %% [markdown]
+# # trajectory_catalogue
+
+# %%
+print(1)

@@ -1,0 +1,67 @@
+"""The documentation site builds offline and in strict mode (what `make docs` runs): every
+page, the generated references, the executed tutorials; and a broken link fails it."""
+
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("mkdocs", reason="the docs extra: pip install -e '.[docs]' (make install)")
+
+ROOT = Path(__file__).parents[2]
+ENV = {**os.environ, "NO_MKDOCS_2_WARNING": "1", "MPLBACKEND": "Agg"}
+
+
+def build(config: Path, site: Path, execute: bool = True) -> subprocess.CompletedProcess:
+    env = {**ENV, "SOFTIMPACT_DOCS_EXECUTE": "1" if execute else "0"}
+    return subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-f",
+                           str(config), "-d", str(site)], cwd=config.parent, env=env,
+                          capture_output=True, text=True, timeout=1800)
+
+
+@pytest.mark.slow
+def test_the_site_builds_strict_with_every_page_and_tutorial(tmp_path):
+    site = tmp_path / "site"
+    started = time.perf_counter()
+    run = build(ROOT / "mkdocs.yml", site)
+    wall = time.perf_counter() - started
+    assert run.returncode == 0, run.stderr[-3000:]
+    pages = sorted(p.relative_to(site).as_posix() for p in site.rglob("*.html"))
+    print(f"site: {len(pages)} pages in {wall:.0f} s")
+    for page in ("index.html", "getting-started.html", "reference/scene-keys.html",
+                 "reference/api.html", "reference/commands.html", "gallery.html",
+                 "howto/reproduce-table.html", "validation/numerics.html"):
+        assert page in pages
+    tutorials = sorted((ROOT / "docs" / "tutorials").glob("*.py"))
+    assert len(tutorials) >= 8
+    for path in tutorials:
+        html = (site / "tutorials" / f"{path.stem}.html").read_text()
+        assert "Executed when the site was built" in html, path.name
+    api = (site / "reference" / "api.html").read_text()
+    assert 'id="softimpact_cli.api.sweep"' in api  # mkdocstrings rendered the module
+    keys = (site / "reference" / "scene-keys.html").read_text()
+    assert "steps_per_period" in keys and "section_zero_exponent" in keys
+    gallery = (site / "gallery.html").read_text()
+    for png in (ROOT / "docs" / "gallery").glob("*.png"):
+        assert f"gallery/{png.name}" in gallery, f"gallery.md does not show {png.name}"
+
+
+def test_a_broken_link_fails_the_build(tmp_path):
+    """The site in a scratch copy (tutorials rendered, not run) with one link to a page that
+    does not exist: the strict build fails on that link alone (the whole site builds in
+    the test above)."""
+    for name in ("docs", "configs"):
+        shutil.copytree(ROOT / name, tmp_path / name)
+    (tmp_path / "results").mkdir()
+    shutil.copy(ROOT / "results" / "reproduce.md", tmp_path / "results")
+    shutil.copy(ROOT / "mkdocs.yml", tmp_path)
+    page = tmp_path / "docs" / "citing.md"
+    page.write_text(page.read_text() + "\nSee [the numerics](validation/numerik.md).\n")
+    broken = build(tmp_path / "mkdocs.yml", tmp_path / "site", execute=False)
+    assert broken.returncode != 0
+    assert "validation/numerik.md" in broken.stderr
+    assert "Aborted with 1 warnings in strict mode" in broken.stderr, broken.stderr[-3000:]
