@@ -48,6 +48,9 @@ trajectory: $(STAMP)
 # QUICK=1 runs every figure scene at low resolution (for CI; see softimpact sweep --help).
 QUICK ?=
 QUICKFLAG := $(if $(QUICK),--quick,)
+# The gallery of the documentation site (docs/gallery.md shows docs/gallery/*.png): a
+# figure target at full resolution copies its PNG there; QUICK=1 figures stay in results/.
+GALLERY = $(if $(QUICK),,cp $(1) docs/gallery/)
 
 # Attractor catalogues (figures 4, 9-10 and 13's single body): HDF5 + PNG under results/.
 catalogues: fig04 fig10 fig13-catalogue
@@ -55,14 +58,17 @@ catalogues: fig04 fig10 fig13-catalogue
 fig04: $(STAMP)
 	$(SI) sweep configs/fig04_duffing_catalogue.toml -o results/fig04.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot catalogue results/fig04.h5 -o results/fig04.png
+	$(call GALLERY,results/fig04.png)
 
 fig10: $(STAMP)
 	$(SI) sweep configs/fig10_bilinear_catalogue.toml -o results/fig10.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot catalogue results/fig10.h5 -o results/fig10.png
+	$(call GALLERY,results/fig10.png)
 
 fig13-catalogue: $(STAMP)
 	$(SI) sweep configs/fig13_bilinear_catalogue.toml -o results/fig13_catalogue.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot catalogue results/fig13_catalogue.h5 -o results/fig13_catalogue.png
+	$(call GALLERY,results/fig13_catalogue.png)
 
 # Basin figures (the study's section 5).
 BASIN_FIGS := fig03 fig06 fig09 fig12 fig13 fig14ab fig14cd
@@ -85,6 +91,7 @@ fig11: configs/figures/fig11_bilinear_dcrit.toml
 $(DCRIT_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot dcrit results/$@.h5 -o results/$@.png
+	$(call GALLERY,results/$@.png)
 
 STABILITY_FIGS := fig15a fig15b fig14c-t0 fig14c-random-t0
 FIGURES += $(STABILITY_FIGS)
@@ -98,23 +105,27 @@ $(STABILITY_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) info results/$@.h5
 	$(if $(filter fig14c-random-t0,$@),,$(SI) plot stability results/$@.h5 -o results/$@.png)
+	$(if $(filter fig14c-random-t0,$@),,$(call GALLERY,results/$@.png))
 
 fig07: fig07-bifurcation fig07-basins
 fig07-bifurcation: $(STAMP)
 	$(SI) sweep configs/figures/fig07_duffing_bifurcation.toml -o results/fig07.h5 --overwrite \
 		$(QUICKFLAG)
 	$(SI) plot bifurcation results/fig07.h5 -o results/fig07.png
+	$(call GALLERY,results/fig07.png)
 	$(SI) info results/fig07.h5
 fig07-basins: $(STAMP)
 	$(SI) sweep configs/figures/fig07_duffing_basins.toml -o results/fig07_basins.h5 \
 		--overwrite $(QUICKFLAG)
 	$(SI) plot basins results/fig07_basins.h5 -o results/fig07_basins.png
+	$(call GALLERY,results/fig07_basins.png)
 FIGURES += fig07
 
 map-d-phi: $(STAMP)
 	$(SI) sweep configs/figures/map_duffing_d_phi.toml -o results/map_d_phi.h5 --overwrite \
 		$(QUICKFLAG)
 	$(SI) plot map results/map_d_phi.h5 -o results/map_d_phi.png
+	$(call GALLERY,results/map_d_phi.png)
 FIGURES += map-d-phi
 
 # Tipping probabilities of the study's control scenario: d 22 -> 6 at phi = 0 (README).
@@ -132,6 +143,7 @@ fatal-shock: $(STAMP)
 $(BASIN_FIGS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$@.h5 --overwrite $(QUICKFLAG)
 	$(SI) plot basins results/$@.h5 -o results/$@.png
+	$(call GALLERY,results/$@.png)
 
 
 .PHONY: figures map-d-phi tipping fatal-shock fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
@@ -194,6 +206,7 @@ continuation-fig14c-ns: configs/continuation/fig14c_neimark_sacker_c_c.toml
 $(CONTINUATION): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) plot continuation results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
+	$(call GALLERY,results/$(subst -,_,$@).png)
 	$(SI) info results/$(subst -,_,$@).h5
 .PHONY: continuation $(CONTINUATION)
 
@@ -210,10 +223,12 @@ $(CHAOS): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) info results/$(subst -,_,$@).h5
 	$(SI) plot stability results/$(subst -,_,$@).h5 --attractors -o results/$(subst -,_,$@).png
+	$(call GALLERY,results/$(subst -,_,$@).png)
 chaos-fig14c-basins: $(STAMP)
 	$(SI) sweep configs/figures/chaos_fig14c_basins.toml -o results/chaos_fig14c_basins.h5 \
 		--overwrite $(QUICKFLAG)
 	$(SI) plot basins results/chaos_fig14c_basins.h5 -o results/chaos_fig14c_basins.png
+	$(call GALLERY,results/chaos_fig14c_basins.png)
 .PHONY: chaos chaos-fig14c-basins $(CHAOS)
 FIGURES += $(CHAOS) chaos-fig14c-basins
 
@@ -226,6 +241,7 @@ design-bilinear: configs/design_bilinear.toml
 $(DESIGNS): $(STAMP)
 	$(SI) design $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) plot design results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
+	$(call GALLERY,results/$(subst -,_,$@).png)
 .PHONY: designs $(DESIGNS)
 
 # Speed, side by side in one run (figure 6(d) basin): softimpact vs the study's method vs

@@ -51,20 +51,29 @@ def percent_cells(text: str) -> list[tuple[str, str]]:
     return out
 
 
-def _run_cell(source: str, namespace: dict, name: str) -> str:
-    """Execute one code cell; return what it printed (and its last expression's repr)."""
+def _run_cell(source: str, namespace: dict, name: str) -> tuple[str, list]:
+    """Execute one code cell; return what it printed (and its last expression's repr, as
+    a notebook shows it) and the figures it made: pyplot's and the matplotlib Figures
+    bound to names (softimpact's figure functions return Figures pyplot does not know)."""
+    from matplotlib.figure import Figure
+
+    before = {id(v) for v in namespace.values() if isinstance(v, Figure)}
     tree = ast.parse(source, filename=name)
     last = None
     if tree.body and isinstance(tree.body[-1], ast.Expr):
         last = ast.Expression(tree.body.pop().value)
     buffer = io.StringIO()
+    value = None
     with contextlib.redirect_stdout(buffer):
         exec(compile(tree, name, "exec"), namespace)
         if last is not None:
             value = eval(compile(last, name, "eval"), namespace)
-            if value is not None:
+            if value is not None and not isinstance(value, Figure):
                 print(repr(value))
-    return buffer.getvalue()
+    figures = [v for v in namespace.values() if isinstance(v, Figure) and id(v) not in before]
+    if isinstance(value, Figure) and value not in figures:
+        figures.append(value)
+    return buffer.getvalue(), figures
 
 
 def render_tutorial(path: Path, config, files, execute: bool) -> str:
@@ -92,16 +101,17 @@ def render_tutorial(path: Path, config, files, execute: bool) -> str:
             if not execute:
                 continue
             try:
-                printed = _run_cell(source, namespace, f"{path.name} cell {index}")
+                printed, figures = _run_cell(source, namespace, f"{path.name} cell {index}")
             except Exception as exc:  # the build fails, naming the cell
                 raise PluginError(f"docs/tutorials/{path.name}, cell {index}: "
                                   f"{type(exc).__name__}: {exc}") from exc
             if printed.strip():
                 parts.append(f"```text\n{printed.rstrip()}\n```\n")
-            for number in plt.get_fignums():
+            figures += [plt.figure(n) for n in plt.get_fignums() if plt.figure(n) not in figures]
+            for shown in figures:
                 figure += 1
                 png = io.BytesIO()
-                plt.figure(number).savefig(png, format="png", dpi=80, bbox_inches="tight")
+                shown.savefig(png, format="png", dpi=80, bbox_inches="tight")
                 name = f"tutorials/{path.stem}-{figure}.png"
                 files.append(File.generated(config, name, content=png.getvalue()))
                 parts.append(f"![figure {figure} of this tutorial]({path.stem}-{figure}.png)\n")

@@ -28,6 +28,7 @@ from . import KINDS
 VARIANTS = (
     ("trajectory", 'law = "paper"', 'law = "hunt-crossley"\nexponent = 1.5'),
     ("stability", "t0 = 0.0 ", 't0 = "random" '),
+    ("design", "screen_n = ", "robust_n = 40\nscreen_n = "),
 )
 LIST_SCENE = """\
 [system]

@@ -41,6 +41,9 @@ def test_the_site_builds_strict_with_every_page_and_tutorial(tmp_path):
     for path in tutorials:
         html = (site / "tutorials" / f"{path.stem}.html").read_text()
         assert "Executed when the site was built" in html, path.name
+        if path.stem != "batch_ci":  # the others draw their results
+            assert f'src="{path.stem}-1.png"' in html, f"{path.name} shows no figure"
+            assert (site / "tutorials" / f"{path.stem}-1.png").stat().st_size > 5000
     api = (site / "reference" / "api.html").read_text()
     assert 'id="softimpact_cli.api.sweep"' in api  # mkdocstrings rendered the module
     keys = (site / "reference" / "scene-keys.html").read_text()
@@ -65,3 +68,20 @@ def test_a_broken_link_fails_the_build(tmp_path):
     assert broken.returncode != 0
     assert "validation/numerik.md" in broken.stderr
     assert "Aborted with 1 warnings in strict mode" in broken.stderr, broken.stderr[-3000:]
+
+
+def test_make_figures_writes_the_gallery():
+    """Every gallery PNG but the t0 = T/2 variants (from the reproduction runs) is copied
+    there by `make figures`, `make continuation` or `make designs` at full resolution;
+    QUICK=1 leaves the gallery alone."""
+    def copies(*args: str) -> set[str]:
+        run = subprocess.run(["make", "-n", *args], cwd=ROOT, capture_output=True, text=True,
+                             check=True)
+        return {m for line in run.stdout.splitlines()
+                if (m := line.removeprefix("cp results/").removesuffix(" docs/gallery/"))
+                != line and line.endswith(" docs/gallery/")}
+
+    made = copies("figures", "continuation", "designs")
+    shown = {p.name for p in (ROOT / "docs" / "gallery").glob("*.png")}
+    assert shown - {"fig07_basins_t0half.png", "fig14cd_t0half.png"} <= made
+    assert not copies("figures", "QUICK=1")
