@@ -298,6 +298,17 @@ bench-compare: $(STAMP)
 docs: $(STAMP)
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict --quiet
 
+# The built site in headless Chromium (Debian's package, installed here when missing; the
+# playwright package drives it, no browser download): every page loaded from a server on
+# 127.0.0.1, failing on a console error, a failed request or an image that does not load;
+# screenshots of three pages in results/docs-screenshots/ (docs/check_site.py).
+CHROMIUM ?= /usr/bin/chromium
+docs-check: docs
+	@test -x $(CHROMIUM) || (apt-get update -qq && DEBIAN_FRONTEND=noninteractive \
+		apt-get install -y -qq chromium)
+	@$(PY) -c "import playwright" 2>/dev/null || $(PY) -m pip install --quiet -e '.[docs-check]'
+	$(PY) docs/check_site.py site --screenshots results/docs-screenshots --chromium $(CHROMIUM)
+
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 
