@@ -164,7 +164,12 @@ def run(scene, progress=None, **_):
                        a.brute_force_step)
         if tick:
             tick(len(chosen))
-    return continuation_dataset(base, branches, fates, brute, lam0, (a.low, a.high))
+    ds = continuation_dataset(base, branches, fates, brute, lam0, (a.low, a.high))
+    if a.start == "catalogue":  # its order gives each solution the colour of the basins
+        from ..analysis.catalogue import scene_catalogue
+
+        ds.attrs["catalogue_names"] = "; ".join(scene_catalogue(scene).names)
+    return ds
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:

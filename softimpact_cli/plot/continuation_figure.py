@@ -11,9 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.labels import latex_of
 from . import PARAMETER_TEX, parameter_text, place_panels, root_figure
+from .palette import colour_of, solution_order
 
-COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange", "tab:brown")
+LABEL_FONT = 8  # points: the event labels (LP, NS, ...)
 MARKERS = {"fold": "o", "branch point": "D", "period doubling": "s",
            "Neimark-Sacker": "^", "grazing": "v", "doubling origin": "P"}
 SHORT = {"fold": "LP", "branch point": "BP", "period doubling": "PD",
@@ -30,9 +32,33 @@ def _runs(mask: np.ndarray):
             start = k
 
 
+def _label_events(ax, points: list[tuple[float, float, str]]) -> None:
+    """Name each event marker (LP, NS, ...) beside it, moving a label up, in steps of its
+    height, while it would overlap one placed before (in display units: the axes' limits
+    as autoscaled from the branches drawn so far)."""
+    ax.autoscale_view()
+    dpi_scale = ax.figure.dpi / 72.0
+    height = 1.25 * LABEL_FONT * dpi_scale  # pixels of one label line
+    placed: list[tuple[float, float, float]] = []  # (x, y, width) in pixels
+    for x, y, kind in sorted(points, key=lambda p: (p[0], p[1])):
+        text = SHORT.get(kind, kind)
+        width = 0.65 * LABEL_FONT * dpi_scale * len(text)
+        px, py = ax.transData.transform((x, y))
+        px, py = px + 4 * dpi_scale, py + 3 * dpi_scale
+        shift = 0.0
+        while any(abs(px - qx) < max(width, qw) and abs(py + shift - qy) < height
+                  for qx, qy, qw in placed):
+            shift += height
+        placed.append((px, py + shift, width))
+        ax.annotate(text, (x, y), textcoords="offset points",
+                    xytext=(4, 3 + shift / dpi_scale), fontsize=LABEL_FONT, zorder=6,
+                    arrowprops=dict(arrowstyle="-", lw=0.4, color="0.4") if shift else None)
+
+
 def draw_continuation(ds, ax=None):
     """``len(body) + 1`` panels stacked (``ax``: that many Axes or a Figure)."""
     bodies = [str(b) for b in ds["body"].values]
+    order = solution_order(ds)
     n = len(bodies) + 1
     fig, panels = place_panels(ax, (n, 1), [(i, 0) for i in range(n)],
                                figsize=(8, 3.2 * n), sharex=True)
@@ -55,7 +81,8 @@ def draw_continuation(ds, ax=None):
     for b in range(ds.sizes["branch"]):
         first, size = int(ds["branch_first"].values[b]), int(ds["branch_size"].values[b])
         part = slice(first, first + size)
-        colour = COLOURS[b % len(COLOURS)]
+        branch = str(ds["branch_name"].values[b])
+        colour = colour_of(branch, order)  # the solution's colour in the basin figures
         p = int(ds["branch_periods"].values[b])
         state = stable[part] + 2 * impacting[part]
         for a, z, code in _runs(state):
@@ -68,16 +95,14 @@ def draw_continuation(ds, ax=None):
             for m in range(mod.shape[1]):
                 panels[-1].plot(lam[part][a:z], mod[part, m][a:z], style, color=colour,
                                 lw=1.0, zorder=3)
-        panels[0].plot([], [], "-", color=colour, label=str(ds["branch_name"].values[b]))
-    for e in range(ds.sizes["event"]):
-        kind = str(ds["event_kind"].values[e])
-        x = float(ds["event_parameter"].values[e])
-        state = ds["event_state"].values[e]
-        for j, ax_ in enumerate(panels[:-1]):
-            y = float(state[2 * j])
+        panels[0].plot([], [], "-", color=colour, label=latex_of(branch))
+    events = [(float(ds["event_parameter"].values[e]), str(ds["event_kind"].values[e]),
+               ds["event_state"].values[e]) for e in range(ds.sizes["event"])]
+    for j, ax_ in enumerate(panels[:-1]):
+        points = [(x, float(state[2 * j]), kind) for x, kind, state in events]
+        for x, y, kind in points:
             ax_.plot(x, y, MARKERS.get(kind, "*"), mfc="white", mec="black", ms=7, zorder=5)
-            ax_.annotate(SHORT.get(kind, kind), (x, y), textcoords="offset points",
-                         xytext=(4, 4), fontsize=8, zorder=6)
+        _label_events(ax_, points)
     panels[0].plot([], [], "--", color="0.3", label="unstable")
     if impacting.any():
         panels[0].plot([], [], "-", color="0.3", lw=2.2, label="impacting")

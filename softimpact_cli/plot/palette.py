@@ -31,11 +31,13 @@ NOT_PERIODIC = ["#d81b60", "#00897b", "#1a237e", "#827717", "#6a1b9a", "#e65100"
 
 def solution_order(ds) -> list[str]:
     """The catalogue's solution names in catalogue order (pairs: combinations; one body:
-    attractors), from any result that carries the catalogue; [] if it does not."""
+    attractors), from any result that carries the catalogue or its ``catalogue_names``
+    attribute; [] if it does not."""
     for var in ("combination_name", "attractor_name"):
         if var in ds:
             return [str(n) for n in ds[var].values]
-    return []
+    names = str(ds.attrs.get("catalogue_names", ""))  # results without the catalogue's
+    return names.split("; ") if names else []         # arrays (continuation)
 
 
 def colour_of(name: str, order: Sequence[str] = ()) -> str:
