@@ -182,8 +182,11 @@ def wrap_tex(text: str, width: int) -> str:
 
 
 def panel_letter(ax, k: int, fontsize: int = 11) -> None:
-    """(a), (b), ... at the top left of a panel, outside the data."""
-    ax.text(-0.02, 1.02, f"({chr(ord('a') + k)})", transform=ax.transAxes, ha="right",
+    """(a), (b), ..., (z), (aa), (ab), ... at the top left of a panel, outside the data."""
+    letters = chr(ord("a") + k % 26)
+    if k >= 26:  # past (z), as spreadsheet columns: (aa), (ab), ...
+        letters = chr(ord("a") + k // 26 - 1) + letters
+    ax.text(-0.02, 1.02, f"({letters})", transform=ax.transAxes, ha="right",
             va="bottom", fontsize=fontsize, fontweight="bold")
 
 

@@ -19,14 +19,33 @@ from . import (
 )
 from .palette import colour_of
 
+# A catalogue with more combinations than this (figure 13's 28) is laid out compactly:
+# six columns of smaller panels sharing one x1/x2 scale, the attractors in the top left.
+COMPACT_AFTER = 9
+COMPACT_COLUMNS = 6
+
 
 def _catalogue_panels(ax, n_combos: int):
     """(container, attractor panel, combination panels): the attractors in a column
-    spanning the figure's height beside three columns of combinations, or ``ax``."""
+    spanning the figure's height beside three columns of combinations (or, past
+    COMPACT_AFTER combinations, in the top left of six columns), or ``ax``."""
     if ax is not None and not is_figure(ax):
         fig, panels = place_panels(ax, (1, 1 + n_combos),
                                    [(0, k) for k in range(1 + n_combos)], None)
         return fig, panels[0], panels[1:]
+    if n_combos > COMPACT_AFTER:
+        cols, half = COMPACT_COLUMNS, COMPACT_COLUMNS // 2
+        rows = 2 + ceil(max(0, n_combos - 2 * half) / cols)
+        fig = new_figure(figsize=(2.6 * cols, 2.1 * rows + 0.8)) if ax is None else ax
+        grid = fig.add_gridspec(rows, cols)
+        first = fig.add_subplot(grid[:2, :half])
+        cells = [(r, c) for r in range(2) for c in range(half, cols)]
+        cells += [(r, c) for r in range(2, rows) for c in range(cols)]
+        combo_axes = []
+        for r, c in cells[:n_combos]:
+            share = combo_axes[0] if combo_axes else None
+            combo_axes.append(fig.add_subplot(grid[r, c], sharey=share))
+        return fig, first, combo_axes
     ncols = 4 if n_combos else 1
     nrows_c = ceil(n_combos / (ncols - 1)) if n_combos else 0
     nrows = max(1, nrows_c, 2 if n_combos else 1)
@@ -55,7 +74,7 @@ def draw_catalogue(ds, ax=None):
         ax.plot(curve[:, 0], curve[:, 1], color=c, lw=1.2, label=latex_of(name))
         ax.plot(pts[:, 0], pts[:, 1], "o", ms=6, color=c, mec="k", zorder=3)
         for k, (x, v) in enumerate(pts):
-            ax.annotate(str(k), (x, v), textcoords="offset points", xytext=(4, 4), fontsize=7)
+            ax.annotate(str(k), (x, v), textcoords="offset points", xytext=(4, 4), fontsize=8)
         if "right_curve" in ds:
             rc = ds["right_curve"].values[i, : p * spp]
             rp = ds["right_points"].values[i, :p]
@@ -86,14 +105,18 @@ def draw_catalogue(ds, ax=None):
         orbit = ds["combination_orbit"].values[n, :q]
         cax.plot(np.arange(q), orbit[:, 0], "o", ms=3, color="tab:blue")
         cax.plot(np.arange(q), orbit[:, 2], "s", ms=3, color="tab:red")
-        cax.set_title(latex_of(cname), fontsize=10)
+        cax.set_title(latex_of(cname), fontsize=11)
         for spine in cax.spines.values():  # the label's colour, as in the basin figures
             spine.set_edgecolor(colour_of(cname, combos))
             spine.set_linewidth(2.0)
-        cax.set_xlabel("$(t - t_0)/T$", fontsize=8)
-        cax.tick_params(labelsize=7)
+        compact = len(combos) > COMPACT_AFTER
+        if not compact or n >= len(combos) - COMPACT_COLUMNS:  # the bottom row only
+            cax.set_xlabel("$(t - t_0)/T$", fontsize=9)
+        if compact and cax.get_subplotspec().colspan.start not in (0, COMPACT_COLUMNS // 2):
+            cax.tick_params(labelleft=False)  # one shared x1/x2 scale: the row's first
+        cax.tick_params(labelsize=8)
         if n == 0:
-            cax.legend(fontsize=7, loc="upper right")
+            cax.legend(fontsize=8, loc="upper right")
     if combos:
         for k, a in enumerate([ax, *combo_axes]):
             panel_letter(a, k, fontsize=10)
