@@ -128,13 +128,13 @@ map-d-phi: $(STAMP)
 	$(call GALLERY,results/map_d_phi.png)
 FIGURES += map-d-phi
 
-# Tipping probabilities of the study's control scenario: d 22 -> 6 at phi = 0 (README).
+# Tipping probabilities of the study's control scenario: d 22 -> 6 at phi = 0 (docs/howto/analyses.md).
 tipping: $(STAMP)
 	$(SI) sweep configs/tipping_duffing_d22_to_6.toml -o results/tipping_duffing_d22_to_6.h5 \
 		--overwrite $(QUICKFLAG)
 	$(SI) plot tipping results/tipping_duffing_d22_to_6.h5 -o results/tipping_duffing_d22_to_6.png
 
-# Minimal fatal shock of figure 6(d)'s dominant solution (README).
+# Minimal fatal shock of figure 6(d)'s dominant solution (docs/howto/analyses.md).
 fatal-shock: $(STAMP)
 	$(SI) sweep configs/fatal_shock_duffing_6d.toml -o results/fatal_shock_duffing_6d.h5 \
 		--overwrite $(QUICKFLAG)
@@ -148,7 +148,7 @@ $(BASIN_FIGS): $(STAMP)
 
 .PHONY: figures map-d-phi tipping fatal-shock fig07 fig07-bifurcation fig07-basins fig14 fig15 $(BASIN_FIGS) $(DCRIT_FIGS) $(STABILITY_FIGS)
 
-# How fractal are the basins (issue 17; README "How fractal are the basins"): each plane of
+# How fractal are the basins (issue 17; docs/validation/fractality.md): each plane of
 # figures 3, 9 and a zoom of 9 (one body, FRACTAL_RES_ONE cells per side at most) and of
 # the coupled figures 6, 12, 13, 14(a-b) (FRACTAL_RES per side) swept, then measured: basin
 # entropy against the box size, uncertainty exponent with its fit interval, Wada test.
@@ -178,7 +178,7 @@ $(FRACTALITY): $(STAMP)
 		-o results/fractality/$(@:fractality-%=%)_measures.png
 .PHONY: fractality $(FRACTALITY)
 
-# Lyapunov exponents (README: "Lyapunov exponents"): Ueda's chaotic oscillator (the smooth
+# Lyapunov exponents (docs/howto/lyapunov.md): Ueda's chaotic oscillator (the smooth
 # reference), the catalogue of figure 14(c) beside its Floquet exponents, and the spectrum
 # along c_c from figure 14(c)'s impacting orbit. About a minute in all.
 LYAPUNOV := lyapunov-ueda lyapunov-fig14c-catalogue lyapunov-fig14c-c-c
@@ -191,7 +191,7 @@ $(LYAPUNOV): $(STAMP)
 	$(SI) plot lyapunov results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
 .PHONY: lyapunov $(LYAPUNOV)
 
-# Continuation (README: "Continuation of periodic orbits"): the single Duffing body's
+# Continuation (docs/howto/continuation.md): the single Duffing body's
 # hysteresis loop in F (two folds, the saddle dashed, brute-force sweeps up and down),
 # figure 7 as branches in d (grazing at the critical distances, impacting orbits, folds),
 # Ueda's period-doubling cascade in F, figure 14(c)'s impacting orbit in c_c (its
@@ -212,7 +212,7 @@ $(CONTINUATION): $(STAMP)
 	$(SI) info results/$(subst -,_,$@).h5
 .PHONY: continuation $(CONTINUATION)
 
-# Attractors that are not periodic (README): figure 15(b)'s unresolved share at c_c = 3, 4
+# Attractors that are not periodic (docs/howto/nonperiodic.md): figure 15(b)'s unresolved share at c_c = 3, 4
 # and the period-5 bilinear design's point, split by the second stage into chaotic and
 # quasi-periodic attractors (with their Lyapunov exponents), long-period orbits and long
 # transients; and the basins of the first two on figure 14(c)'s plane. About 1, 4 and 10-16
@@ -234,7 +234,7 @@ chaos-fig14c-basins: $(STAMP)
 .PHONY: chaos chaos-fig14c-basins $(CHAOS)
 FIGURES += $(CHAOS) chaos-fig14c-basins
 
-# Designing for one solution (README): choose (d, phi, k_c, c_c) so that only the target
+# Designing for one solution (docs/howto/nonperiodic.md): choose (d, phi, k_c, c_c) so that only the target
 # survives, verified by basin stability; a few minutes each on 2 cores.
 DESIGNS := design-duffing design-bilinear
 designs: $(DESIGNS)

@@ -208,8 +208,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
 
     A sweep (basins, stability, map) is verified when it completes: a random sample is
     rerun at tight settings and its label disagreement stored with a 95% interval; over
-    the [verification] threshold it is redone at tighter settings (README: "How right
-    is a result"). --strict: exit status 3 when it stays over the threshold.
+    the [verification] threshold it is redone at tighter settings (docs/validation/
+    how-right.md). --strict: exit status 3 when it stays over the threshold.
 
     \b
     Examples:
@@ -459,7 +459,7 @@ def measure(result, output, overwrite, box_sizes, radii, wada_radius, wada_tol):
     basin entropy S_b, S_bb against the box size with the ln 2 criterion, the uncertainty
     exponent alpha and boundary dimension D = 2 - alpha with 95% fit intervals, and the
     Wada merging test. Writes a fractality result (softimpact info / plot fractality);
-    README: "How fractal are the basins".
+    docs/validation/fractality.md.
 
     \b
     Example:

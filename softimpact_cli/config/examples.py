@@ -9,7 +9,7 @@ from __future__ import annotations
 from ..systems import STOP_LAWS
 
 _COMMON = """\
-# Every key not given takes its default (README: "Running a scene"); unknown keys are errors.
+# Every key not given takes its default (docs/reference/scene-keys.md); unknown keys are errors.
 # Run: softimpact sweep THIS_FILE.toml   (then: softimpact info / softimpact plot {plot} ...)
 """
 
@@ -238,7 +238,7 @@ wada_tol = 0.05            # ... and call it Wada when at most 5% of one lies fa
 kind = "plane"
 axes = ["x", "v"]
 ranges = [[-2.5, 2.5], [-2.5, 2.5]]
-resolution = [40, 40]      # about 20 s; the measures need more (README: 100+ per side)
+resolution = [40, 40]      # about 20 s; the measures need more (docs: 100+ per side)
 
 [catalogue]
 box = { x = [-3.0, 3.0], v = [-3.0, 3.0] }

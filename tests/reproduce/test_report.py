@@ -39,16 +39,17 @@ def test_bad_only_is_one_error_line():
 
 
 def readme_reproduce_line() -> list[str]:
-    text = (ROOT / "README.md").read_text()
-    lines = [m.group(1) for m in re.finditer(r"^(softimpact reproduce --quick[^\n]*)$", text,
-                                             re.M)]
-    assert lines, "README shows a quick `softimpact reproduce --quick --only ...` line"
+    """The quick line of the site's page on reproducing the study (once the README's)."""
+    text = (ROOT / "docs" / "howto" / "reproduce.md").read_text()
+    lines = [m.group(1) for m in re.finditer(
+        r"^(?:\.venv/bin/)?(softimpact reproduce --quick[^\n]*)$", text, re.M)]
+    assert lines, "docs/howto/reproduce.md shows a `softimpact reproduce --quick --only` line"
     return shlex.split(lines[0], comments=True)[1:]
 
 
 @pytest.mark.slow
 def test_readme_quick_reproduce_runs_and_says_quick(tmp_path, monkeypatch):
-    """The README's quick line (a catalogue and a d_crit run at --quick sizes)."""
+    """The docs' quick line (a catalogue and a d_crit run at --quick sizes)."""
     monkeypatch.chdir(tmp_path)
     words = readme_reproduce_line()
     result = CliRunner().invoke(main, [*words, "--cache", str(tmp_path / "cache"), "-q"])
