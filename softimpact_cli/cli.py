@@ -198,7 +198,7 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
       basins       the label of every start on a plane, at every [grid] point
       stability    basin stability: shares of random starts, 95% Wilson intervals
       dcrit        critical distance d_crit(phi) of every combination
-      bifurcation  each solution followed along d, destruction points located
+      bifurcation  each solution followed along d (or w, F, ...), destruction located
       map          coexisting solutions over two parameters, predicted and found
       design       (d, phi, k_c, c_c) where only the target survives (see design)
 
