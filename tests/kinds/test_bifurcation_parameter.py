@@ -113,3 +113,19 @@ def test_the_frequency_response_scene_finds_the_fold():
     amplitude = np.hypot(large["section_x1"].isel(point=0), large["section_v1"].isel(point=0)
                          / w).values
     assert amplitude[before].min() > 10.0 and amplitude[~before].max() < 1.0
+
+
+def test_continuation_follows_any_model_parameter_as_the_grid_does():
+    """The continuation's parameters are the grid axes (config.axes), not a list of its
+    own: continued in the damping c, a linear body's period-1 orbit at w = 0.9 has the
+    closed-form amplitude at every point."""
+    ds = si.run(LINEAR.replace('parameter = "w"\nstart = 0.5\nstop = 1.5\nstep = 0.1\n',
+                               'parameter = "c"\nlow = 0.02\nhigh = 0.3\nstep = 0.02\n'
+                               "max_step = 0.05\n")
+                .replace('kind = "bifurcation"', 'kind = "continuation"')
+                .replace("k2 = 0.0\n", "k2 = 0.0\nw = 0.9\n"), workers=1)
+    c = ds["parameter"].values
+    assert c.min() == pytest.approx(0.02) and c.max() == pytest.approx(0.3)
+    x, v = ds["state"].values.T
+    exact = 1.0 / np.sqrt((1.0 - 0.81) ** 2 + (c * 0.9) ** 2)
+    np.testing.assert_allclose(np.hypot(x, v / 0.9), exact, rtol=1e-8)
