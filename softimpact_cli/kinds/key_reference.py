@@ -106,7 +106,9 @@ def meaning(section: str, kind: str, key: str) -> str | None:
         return LAW_KEYS[key].description
     if section == "grid" and key not in key_docs.KEYS["grid"]:
         param = _parameter(key)
-        return None if param is None else f"swept: {param.description}"
+        described = LAW_KEYS[key].description if key in LAW_KEYS else (
+            None if param is None else param.description)
+        return None if described is None else f"swept: {described}"
     if section in ("system", "coupling") and key not in key_docs.KEYS.get(section, {}):
         param = _parameter(key)
         return None if param is None else param.description
