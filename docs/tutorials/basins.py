@@ -21,9 +21,8 @@ for code, count in zip(codes, counts, strict=True):
 # %% [markdown]
 # The verification, as `softimpact info` shows it: how many of the rerun sample
 # disagree, and the 95% interval of the error share. A plane this small reruns only 50
-# trajectories, too few for the interval's upper end to fall below the accepted 0.5%:
-# "inconclusive" says so (`--check N` reruns more; the demo's 100 x 100 plane is
-# verified).
+# trajectories, too few for the interval's upper end to fall below the accepted 0.5%
+# when none disagree: the status says what the sample bounds (`--check N` reruns more).
 
 # %%
 a = basins.attrs
