@@ -37,14 +37,17 @@ from .api import (  # noqa: E402
     sweep,
 )
 
-__all__ = ["ConfigError", "load_scene", "measure", "open_result", "plot", "run", "shrink_scene",
-           "sweep"]
+__all__ = ["Classified", "ConfigError", "System", "load_scene", "measure", "open_result",
+           "plot", "run", "shrink_scene", "sweep"]
 
 
 def __getattr__(name: str):
-    # the figures import matplotlib: only when a notebook first asks for them
-    if name == "plot":
-        import importlib
+    # the figures import matplotlib, System xarray and the sweep machinery: only when a
+    # notebook first asks for them
+    import importlib
 
+    if name == "plot":
         return importlib.import_module(".plot", __name__)
+    if name in ("System", "Classified"):
+        return getattr(importlib.import_module(".api_system", __name__), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
