@@ -146,12 +146,21 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     kind = kind_of(sc.analysis.kind)
     bar = _progress(progress, kind.progress_unit)
     if kind.sweep:
-        return _sweep_in_memory(sc, workers, scheduler, chunk_size, echo or _silent, bar,
-                                verify, verify_sample)
+        return _handed_out(_sweep_in_memory(sc, workers, scheduler, chunk_size,
+                                            echo or _silent, bar, verify, verify_sample))
     from .kinds.run import run_scene
 
-    return run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
-                     echo=echo or _silent)
+    return _handed_out(run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
+                                 echo=echo or _silent))
+
+
+def _handed_out(ds: xr.Dataset) -> xr.Dataset:
+    """A dataset as the API hands it out: in the dim order of its file (a plane's
+    variables end in (second axis, first axis), as ``xarray.open_dataset`` reads them, so
+    that ``ds.label.plot()`` puts the first axis horizontally; ``store.layout``)."""
+    from .store.layout import file_order
+
+    return file_order(ds)
 
 
 def _check_verify_sample(verify_sample) -> None:
@@ -216,9 +225,10 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     if kind.sweep:
         from .sweep.verification import sweep_verified
 
-        return sweep_verified(sc, target, verify=verify, sample=verify_sample, resume=resume,
-                              echo=echo, workers=workers, scheduler=scheduler,
-                              overwrite=overwrite, chunk_size=chunk_size, progress=bar)
+        return _handed_out(sweep_verified(
+            sc, target, verify=verify, sample=verify_sample, resume=resume, echo=echo,
+            workers=workers, scheduler=scheduler, overwrite=overwrite, chunk_size=chunk_size,
+            progress=bar))
     if resume:
         raise ConfigError(f"{sc.source}: resume is for sweeps (kinds "
                           f"{', '.join(SWEEP_KINDS)}); a {kind.name} reruns whole")
@@ -234,12 +244,19 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
             raise ConfigError(f"{target}: result exists; pass --overwrite to replace it")
         ds = run_scene(sc, progress=bar, workers=workers, scheduler=scheduler, echo=echo)
         write_result(ds, target)
-    return ds
+    return _handed_out(ds)
 
 
 def open_result(path: str | os.PathLike) -> xr.Dataset:
-    """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed).
+    """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed), in
+    the dim order ``xarray.open_dataset`` gives it (as :func:`run` hands results out).
     ConfigError when it is missing, a directory, or not a softimpact result."""
+    return _handed_out(read_result(path))
+
+
+def read_result(path: str | os.PathLike) -> xr.Dataset:
+    """:func:`open_result` in the package's in-memory dim order (``store.layout``): what
+    the command line's ``plot``, ``info`` and ``compare`` read."""
     from .store import open_result as read
 
     p = Path(path)
@@ -278,9 +295,10 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
     import xarray as xr
 
     from .analysis.fractality import fractality, plane_problem
+    from .store.layout import memory_order
 
     name = "result" if isinstance(result, xr.Dataset) else os.fspath(result)
-    ds = result if isinstance(result, xr.Dataset) else open_result(result)
+    ds = memory_order(result) if isinstance(result, xr.Dataset) else read_result(result)
     problem = plane_problem(ds)
     if problem:
         raise ConfigError(f"{name}: {problem}")

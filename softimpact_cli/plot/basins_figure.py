@@ -9,6 +9,7 @@ import numpy as np
 from ..analysis.labels import NONPERIODIC_KINDS, parse_label
 from ..report.info import GRID_AXES, grid_dims, grid_point
 from . import (
+    is_figure,
     multiple_text,
     panel_letter,
     parameter_text,
@@ -143,6 +144,7 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
     i0, i1 = variables.index(a0), variables.index(a1)
     ncols = min(3, n_panels)
     nrows = ceil(n_panels / ncols)
+    own_axes = ax is not None and not is_figure(ax)  # the caller's Axes, in its own figure
     fig, panels = place_panels(ax, (nrows, ncols),
                                [divmod(k, ncols) for k in range(n_panels)],
                                figsize=(4.6 * ncols, 5.0 * nrows + 0.6))
@@ -192,7 +194,11 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
     head = figure_title(ds, varying, (len(x), len(y)), n_panels)
     note = ("markers: each attractor's points at $t = t_0 + nT$, in its basin's colour; "
             "legend: basin, attractor, share of the plane")
-    if n_panels == 1:
+    if n_panels == 1 and own_axes:
+        # one panel among the caller's: its parameters only; the figure and the other
+        # panels are the caller's, and a five-line description on each would repeat
+        panels[0].set_title(panel_title(ds, (0,) * len(grid_shape), varying), fontsize=9)
+    elif n_panels == 1:
         title = panel_title(ds, (0,) * len(grid_shape), varying)
         head = head.replace("\n", (", " + title if title else "") + "\n", 1)
         panels[0].set_title(wrap_tex(f"{head}\n{note}", 75), fontsize=8)

@@ -137,8 +137,10 @@ GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
 
 
 def grid_dims(ds) -> tuple[str, ...]:
-    """The dims a sweep's grid points span: GRID_AXES, or ("panel",)."""
-    return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+    """The dims a sweep's grid points span: GRID_AXES, or ("panel",); without those a
+    selection took away (``ds.sel(d=10)`` keeps d as a scalar coordinate)."""
+    dims = str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split()
+    return tuple(d for d in dims if d in ds.dims or d not in ds.coords)
 
 
 def grid_point(ds, index: tuple[int, ...]) -> dict:
