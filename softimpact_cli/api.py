@@ -33,12 +33,13 @@ from typing import TYPE_CHECKING, Any
 
 from .config import ConfigError, Scene, check_writable, parse_scene, result_path
 from .config import load_scene as load_scene_file
+from .kinds import KINDS
 
 if TYPE_CHECKING:  # importing the package must not import xarray
     import xarray as xr
 
-__all__ = ["ConfigError", "load_scene", "measure", "open_result", "run", "shrink_scene",
-           "sweep"]
+__all__ = ["ConfigError", "kinds", "load_scene", "measure", "open_result", "run",
+           "shrink_scene", "sweep"]
 
 SceneLike = Scene | str | os.PathLike | Mapping[str, Any]
 
@@ -157,10 +158,19 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
 def _handed_out(ds: xr.Dataset) -> xr.Dataset:
     """A dataset as the API hands it out: in the dim order of its file (a plane's
     variables end in (second axis, first axis), as ``xarray.open_dataset`` reads them, so
-    that ``ds.label.plot()`` puts the first axis horizontally; ``store.layout``)."""
+    that ``ds.label.plot()`` puts the first axis horizontally; ``store.layout``), with
+    the ``ds.si`` accessor registered (``accessor.py``)."""
+    # here, not at the top: importing the package must not import xarray
+    from . import accessor  # noqa: F401 (registers ds.si)
     from .store.layout import file_order
 
     return file_order(ds)
+
+
+def kinds() -> dict[str, str]:
+    """Every analysis kind (``[analysis] kind = ...``) with its one-line help, in the
+    order ``softimpact sweep --help`` lists them (the kinds registry)."""
+    return {name: kind.description for name, kind in KINDS.items()}
 
 
 def _check_verify_sample(verify_sample) -> None:

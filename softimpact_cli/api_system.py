@@ -193,8 +193,8 @@ class System:
                               f"{MAX_TRAJECTORY_SAMPLES}")
         sc = self._scene
         problem = Problem(sc.system, sc.values, sc.integrator)
-        return trajectory_dataset(problem, state, _finite(t0, "t0"), periods,
-                                  samples_per_period)
+        return _handed_out(trajectory_dataset(problem, state, _finite(t0, "t0"), periods,
+                                              samples_per_period))
 
     # ---------------------------------------------------------------- helpers
 
