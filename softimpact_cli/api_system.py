@@ -48,6 +48,7 @@ from .config.limits import MAX_TRAJECTORY_SAMPLES
 from .config.sweep import GRID_AXES, CatalogueSettings, Grid, InitialConditions, read_catalogue
 from .config.toml_text import toml_text
 from .kernels.codes import outcome
+from .kinds.catalogue import CatalogueAnalysis
 from .kinds.sweeps import SweepAnalysis
 from .sweep.chunks import run_chunk
 from .sweep.second_stage import relabel, unpack
@@ -230,7 +231,7 @@ def _point_scene(scene: Scene) -> Scene:
                            states=(tuple(0.0 for _ in scene.system.state_names),), t0=0.0)
     catalogue = scene.catalogue
     a = scene.analysis
-    if catalogue is None and a.kind == "catalogue":  # its own search settings
+    if catalogue is None and isinstance(a, CatalogueAnalysis):  # its own search settings
         catalogue = CatalogueSettings(box=a.box, grid=a.grid, random=a.random, seed=a.seed,
                                       match_tol=a.match_tol)
     if catalogue is None:

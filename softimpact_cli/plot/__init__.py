@@ -25,6 +25,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
+
 if TYPE_CHECKING:  # matplotlib is imported inside the functions that draw
     from matplotlib.figure import Figure
 
@@ -310,7 +312,7 @@ def stability(ds, ax=None, *, against: str | None = None, show_error: bool = Fal
     from .stability_figure import draw_stability
 
     ds = _expect(ds, "stability")
-    swept = str(ds.attrs.get("grid_swept", "")).split()
+    swept = attribute_list(ds.attrs, "grid_swept")
     axis = against or (swept[0] if swept else "c_c")
     if attractors:
         from .section_clouds import draw_clouds

@@ -6,6 +6,7 @@ from math import ceil
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..analysis.labels import NONPERIODIC_KINDS, parse_label
 from ..report.info import GRID_AXES, grid_dims, grid_point
 from . import (
@@ -86,7 +87,7 @@ def panel_title(ds, index: tuple[int, ...], axes=None) -> str:
 def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) -> str:
     """One title for the figure: model, plane, resolution, start time and every parameter
     that is the same in all panels (those that differ are in the panel titles)."""
-    a0, a1 = str(ds.attrs["ic_dims"]).split()
+    a0, a1 = attribute_list(ds.attrs, "ic_dims")
     variables = [str(v) for v in ds["variable"].values]
     fixed = ds.attrs.get("plane_fixed") or ", ".join(
         f"${AXIS_SYMBOLS.get(v, v)} = 0$" for v in variables if v not in (a0, a1))
@@ -122,7 +123,7 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    axes_names = str(ds.attrs["ic_dims"]).split()
+    axes_names = attribute_list(ds.attrs, "ic_dims")
     if ds.attrs.get("ic_kind") != "plane" or len(axes_names) != 2:
         raise ValueError("basin plots need initial conditions on a plane")
     a0, a1 = axes_names

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from ..analysis.attributes import with_lists
 from ..config import ConfigError
 from .layout import file_order, memory_order
 from .lock import output_lock
@@ -176,9 +177,11 @@ def update_attributes(path: str | os.PathLike, written, attrs) -> Path:
 
 def open_result(path: str | os.PathLike) -> xr.Dataset:
     """Open a result file fully into memory (the file is closed on return), in the
-    in-memory dim order."""
+    in-memory dim order, its list-valued attributes as lists (also those an older file
+    joined into one text: ``analysis.attributes``)."""
     with xr.open_dataset(path, engine=ENGINE) as ds:
         ds = ds.load()
+    ds.attrs = with_lists(ds.attrs)
     return memory_order(ds)
 
 
