@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..analysis.attributes import attribute_list
+from ..store.layout import memory_order
 
 if TYPE_CHECKING:  # matplotlib is imported inside the functions that draw
     from matplotlib.figure import Figure
@@ -411,6 +412,4 @@ def _in_memory_order(ds):
     """A result as the figures index it: a plane's variables ending in (first axis,
     second axis), whichever order it came in (``si.run`` and ``xarray.open_dataset``
     hand it out in the file's order; ``store.layout``)."""
-    from ..store.layout import memory_order
-
     return memory_order(ds)

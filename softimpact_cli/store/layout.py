@@ -12,13 +12,14 @@ from __future__ import annotations
 
 import xarray as xr
 
+from ..analysis.attributes import attribute_list
+
 
 def plane_axes(ds: xr.Dataset) -> tuple[str, str] | None:
     """The two plane axes (in-memory order) of a plane-of-initial-conditions result."""
     if ds.attrs.get("ic_kind") != "plane":
         return None
-    axes = ds.attrs.get("ic_dims", "")
-    axes = axes.split() if isinstance(axes, str) else [str(a) for a in axes]
+    axes = attribute_list(ds.attrs, "ic_dims")
     return (axes[0], axes[1]) if len(axes) == 2 else None
 
 
