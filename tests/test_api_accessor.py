@@ -115,3 +115,15 @@ def test_kinds_lists_the_registry_with_one_line_each():
             "from softimpact_cli.kinds import KINDS; "
             "assert callable(si.kinds) and list(si.kinds()) == list(KINDS)")
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
+
+
+def test_the_accessor_is_there_for_datasets_xarray_opens_itself():
+    """Importing softimpact_cli after xarray registers ds.si; before, the package still
+    imports no xarray (it registers ds.si on the first dataset it returns)."""
+    code = ("import xarray as xr, numpy as np; import softimpact_cli; "
+            "ds = xr.Dataset({'label_code': ('label_index', np.array([0, -2])), "
+            "'label_name': ('label_index', np.array(['L1^1', 'unresolved']))}); "
+            "assert ds.si.names() == {0: 'L1^1', -2: 'unresolved'}")
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
+    code = "import sys, softimpact_cli; assert 'xarray' not in sys.modules"
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
