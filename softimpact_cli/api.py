@@ -10,6 +10,13 @@
     fig = si.plot.basins(ds, ax=ax)          # draws on ax, returns its Figure
     si.sweep(scene, "basins.h5", resume=True)  # the resumable result file of the CLI
     fr = si.measure("basins.h5", "fractality.h5")  # basin entropy, alpha, Wada test
+    ds.si.shares()                           # each label's share, 95% interval (accessor.py)
+    si.System(scene).classify([8, 0, -4, 0]) # one start's label (api_system.py)
+    si.kinds()                               # every analysis kind, one help line each
+
+Datasets come in the dim order of their file (``store.layout``: a plane's variables end
+in its second axis, then its first, as ``xarray.open_dataset`` reads them); the figures
+and :func:`measure` take either order.
 
 The command line is a thin layer over these functions: ``softimpact sweep`` shrinks the
 scene with :func:`shrink_scene`, runs it with :func:`sweep`, and ``softimpact plot`` /
