@@ -44,6 +44,7 @@ from .analysis.labels import name_of
 from .analysis.trajectory import trajectory_dataset
 from .api import SceneLike, _handed_out, load_scene
 from .config import ConfigError, Scene, parse_scene
+from .config.axes import COUPLING_AXES
 from .config.limits import MAX_TRAJECTORY_SAMPLES
 from .config.sweep import GRID_AXES, CatalogueSettings, Grid, InitialConditions, read_catalogue
 from .config.toml_text import toml_text
@@ -135,9 +136,9 @@ class System:
         the scene's keys are (the same one-line ConfigError); this one is unchanged.
         Nothing is compiled again: the kernels take the parameters as an array."""
         sections = {name: dict(body) for name, body in self._scene.sections.items()}
-        system_keys = set(self._scene.system.parameter_names) - set(COUPLING)
+        system_keys = set(self._scene.system.parameter_names) - set(COUPLING_AXES)
         for name, value in changes.items():
-            if name in COUPLING or name in self._scene.values and name not in system_keys:
+            if name in COUPLING_AXES or name in self._scene.values and name not in system_keys:
                 section = "coupling"
             elif name in system_keys:
                 section = "system"
@@ -217,9 +218,6 @@ class System:
             raise ConfigError(f"{name}: must be {dim} finite numbers "
                               f"({', '.join(self.state_names)}), got {u0!r}")
         return state
-
-
-COUPLING = ("d", "phi", "k_c", "c_c")
 
 
 def _point_scene(scene: Scene) -> Scene:

@@ -20,7 +20,8 @@ import numpy as np
 
 # name -> how results written before the change joined its values (None: whitespace)
 LIST_ATTRIBUTES: dict[str, str | None] = {
-    "ic_dims": None, "grid_swept": None, "grid_dims": None, "catalogue_names": "; ",
+    "ic_dims": None, "grid_swept": None, "grid_dims": None, "grid_parameters": None,
+    "catalogue_names": "; ",
     "plane_axes": None, "plane_shape": None, "cell_size": None, "box_sizes": None,
     "radii": None,
 }
