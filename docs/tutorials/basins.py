@@ -7,16 +7,10 @@
 # ([How right is a result](../validation/how-right.md)).
 
 # %%
-import numpy as np
-
 import softimpact_cli as si
 
 basins = si.run("configs/demo_basins.toml", resolution=24)
-codes = basins["label_code"].values.tolist()
-names = dict(zip(codes, basins["label_name"].values.tolist(), strict=True))
-codes, counts = np.unique(basins["label"].values, return_counts=True)
-for code, count in zip(codes, counts, strict=True):
-    print(f"{names[int(code)]:>14}: {count / counts.sum():.3f}")
+basins.si.shares()   # each solution's share of the plane with its 95% Wilson interval
 
 # %% [markdown]
 # The verification, as `softimpact info` shows it: how many of the rerun sample
