@@ -118,7 +118,9 @@ def test_every_make_target_the_site_shows_exists():
 
 
 # python blocks that cannot run here, and why (each still must compile)
-NOT_RUN = {"howto/sweeps.md": "needs dask-jobqueue and a Slurm cluster"}
+NOT_RUN = {"howto/sweeps.md": "needs dask-jobqueue and a Slurm cluster",
+           "howto/python-api.md": "run, with its outputs checked, by "
+                                  "tests/test_readme.py::test_the_python_api_page_runs_as_written"}
 
 
 @pytest.mark.parametrize("path", [p for p in PAGES if blocks(p.read_text(), "python")],
