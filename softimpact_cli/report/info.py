@@ -12,7 +12,8 @@ from .verification import verification_summary
 
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "catalogue_source", "t0_mode",
-    "analysis", "model", "bodies", "parameters", "outcome", "status_message", "period",
+    "analysis", "model", "bodies", "parameters", "outcome", "label", "status_message",
+    "classified_by", "second_stage", "period",
     "periods_used", "contacts_on_orbit", "max_penetration", "impacting", "t0",
     "integrator_resolved_method", "integrator_rtol", "integrator_atol",
     "integrator_steps_per_period", "integrator_locate_switches", "wall_s", "complete",

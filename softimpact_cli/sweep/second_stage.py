@@ -17,8 +17,13 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.engine import Problem
-from ..analysis.lyapunov import lyapunov_spectrum
-from ..analysis.nonperiodic import Recurrent, attractor_table, identify, known_attractors
+from ..analysis.nonperiodic import (
+    Recurrent,
+    attractor_table,
+    identify,
+    known_attractors,
+    section_spectrum,
+)
 from ..analysis.section_follow import SectionFollow
 from ..systems import get_system
 
@@ -26,8 +31,6 @@ SECTION_ARRAYS = ("section_flat", "section_point", "section_ncells", "section_ce
                   "section_ncloud", "section_cloud", "section_impacting", "section_end",
                   "section_end_t")
 ORBIT_CLOUD = 200  # section points per recurrent attractor kept for plots (attractor_points)
-LYAPUNOV_TRANSIENT = 20  # periods to align the tangent vectors before averaging
-LYAPUNOV_SEGMENTS = 10
 
 
 def pack(found: list[tuple[int, int, SectionFollow]], dim: int) -> dict[str, np.ndarray]:
@@ -75,14 +78,11 @@ def relabel(context, labels: np.ndarray, orbits: dict, found: list[Recurrent],
     integrator settings); ``known``: a result whose attractors keep their codes."""
     found = sorted(found, key=lambda r: r.flat)
     s = context.integrator
-    periods = -(-s.section_lyapunov_periods // LYAPUNOV_SEGMENTS) * LYAPUNOV_SEGMENTS
 
     def spectrum(point: int, state: np.ndarray, t: float):
         values, _ = context.point_values(point)
-        problem = Problem(get_system(context.model, context.bodies), values, s)
-        sp = lyapunov_spectrum(problem, state, t, periods=periods,
-                               transient=LYAPUNOV_TRANSIENT, segments=LYAPUNOV_SEGMENTS)
-        return sp.exponents, sp.stderr
+        return section_spectrum(Problem(get_system(context.model, context.bodies), values, s),
+                                state, t)
 
     seeds = known_attractors(known, s.section_cell)
     codes, attractors = identify(found, spectrum, s.section_zero_exponent, seeds)

@@ -95,3 +95,20 @@ def test_info_lists_the_attractor_with_its_exponents(serial):
     line = next(x for x in format_summary(summary, serial).splitlines()
                 if x.strip().startswith("chaotic A1"))
     assert "6 trajectories" in line and f"{row['exponents'][0]:+.4f}" in line
+
+
+def test_a_trajectory_names_its_attractor_as_the_sweep_does(serial):
+    """The trajectory kind from the sweep's first start (2.5, 0), same settings: the same
+    second stage, the same attractor and the very same exponents (issue 31, item 2)."""
+    from softimpact_cli.analysis.engine import Problem
+    from softimpact_cli.analysis.trajectory import trajectory_dataset
+
+    text = SCENE.replace('kind = "basins"', 'kind = "trajectory"\nstate = [2.5, 0.0]')
+    text = text[: text.index("[initial_conditions]")] + '[output]\npath = "t.h5"\n'
+    sc = parse_scene(text, "ueda_trajectory.toml")
+    ds = trajectory_dataset(Problem(sc.system, sc.values, sc.integrator), [2.5, 0.0], 0.0,
+                            50, 8)
+    assert ds.attrs["outcome"] == "chaotic" and ds.attrs["label"] == "chaotic A1"
+    assert ds.attrs["periods_used"] == int(serial["periods_used"].values.ravel()[0])
+    for var in ("nonperiodic_exponents", "nonperiodic_stderr", "nonperiodic_cloud"):
+        assert np.array_equal(ds[var].values[0], serial[var].values[0]), var
