@@ -84,12 +84,22 @@ def _interruptible(func):
     return wrapper
 
 
+def _second_stage_budget(ds, scene) -> int:
+    """The second stage's periods after max_periods where it ran: sweeps (the label
+    variable) and trajectories; 0 for the kinds that do not follow on the section."""
+    runs = "label" in ds.data_vars or ds.attrs.get("analysis") in ("trajectory", "design")
+    return scene.integrator.section_periods if runs else 0
+
+
 def _warn_outcomes(ds, scene, strict: bool) -> None:
     """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
     --strict, exit with report.outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
-    from .report.outcomes import STRICT_STATUS, outcome_warnings
+    from .report.outcomes import STRICT_STATUS, outcome_notes, outcome_warnings
 
-    messages = outcome_warnings(ds, scene.integrator.max_periods)
+    for note in outcome_notes(ds):
+        click.echo(f"softimpact: note: {note}", err=True)
+    messages = outcome_warnings(ds, scene.integrator.max_periods,
+                                section_periods=_second_stage_budget(ds, scene))
     for message in messages:
         click.echo(f"softimpact: warning: {message}", err=True)
     if messages and strict:

@@ -25,6 +25,7 @@ from ..analysis.nonperiodic import (
     section_spectrum,
 )
 from ..analysis.section_follow import SectionFollow
+from ..kernels.codes import PENDING
 from ..systems import get_system
 
 SECTION_ARRAYS = ("section_flat", "section_point", "section_ncells", "section_cells",
@@ -49,6 +50,17 @@ def pack(found: list[tuple[int, int, SectionFollow]], dim: int) -> dict[str, np.
                         else np.zeros((0, dim))),
         "section_end_t": np.array([f.end_time for _, _, f in found], dtype=np.float64),
     }
+
+
+def progress_codes(result: dict, start: int) -> np.ndarray:
+    """A chunk's label codes for the progress line, its recurrent trajectories (still
+    ``UNRESOLVED_LABEL`` in the chunk, named after the last one) as ``PENDING``: the line
+    counts them apart from those left unresolved. ``start``: the chunk's first flat index."""
+    codes = np.array(result["label"], copy=True)
+    flat = result.get("section_flat")
+    if flat is not None and len(flat):
+        codes[np.asarray(flat) - start] = PENDING
+    return codes
 
 
 def unpack(arrays: dict) -> list[Recurrent]:
