@@ -84,13 +84,6 @@ def _interruptible(func):
     return wrapper
 
 
-def _second_stage_budget(ds, scene) -> int:
-    """The second stage's periods after max_periods where it ran: sweeps (the label
-    variable) and trajectories; 0 for the kinds that do not follow on the section."""
-    runs = "label" in ds.data_vars or ds.attrs.get("analysis") in ("trajectory", "design")
-    return scene.integrator.section_periods if runs else 0
-
-
 def _warn_outcomes(ds, scene, strict: bool) -> None:
     """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
     --strict, exit with report.outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
@@ -98,8 +91,9 @@ def _warn_outcomes(ds, scene, strict: bool) -> None:
 
     for note in outcome_notes(ds):
         click.echo(f"softimpact: note: {note}", err=True)
+    # every kind with outcome shares (sweeps, tipping, design) runs the second stage
     messages = outcome_warnings(ds, scene.integrator.max_periods,
-                                section_periods=_second_stage_budget(ds, scene))
+                                section_periods=scene.integrator.section_periods)
     for message in messages:
         click.echo(f"softimpact: warning: {message}", err=True)
     if messages and strict:
