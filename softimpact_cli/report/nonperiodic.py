@@ -32,7 +32,7 @@ def nonperiodic_summary(ds) -> list[dict]:
 
 def _relevant(ds, point: dict) -> dict:
     """The grid point's values of the axes that are parameters of the system (a body
-    without a stop has no d, phi, k_c, c_c) or swept."""
+    without a stop has no d, phi, k_c, c_c) or swept (``grid_point`` gives every axis)."""
     names = {item.partition("=")[0] for item in str(ds.attrs.get("parameters", "")).split(", ")}
     return {k: v for k, v in point.items()
             if k in names or ds.sizes.get(k, 1) > 1 or not isinstance(v, float)}
@@ -47,7 +47,7 @@ def nonperiodic_lines(rows: list[dict]) -> list[str]:
            "cells, Lyapunov exponents +- standard error (1/time)"]
     for r in rows:
         where = ", ".join(f"{k}={v:.6g}" for k, v in r["at"].items()
-                          if k in ("d", "phi", "k_c", "c_c") and isinstance(v, float))
+                          if k != "t0" and isinstance(v, float))  # the grid's axes
         spectrum = ", ".join(f"{v:+.4f}+-{e:.4f}" for v, e in zip(r["exponents"],
                                                                   r["stderr"], strict=True))
         where = f"  {where}:" if where else ":"
