@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..config.limits import MAX_TRAJECTORY_SAMPLES
+from ..config.reader import ConfigError
 from . import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
 
 
@@ -19,9 +20,28 @@ class TrajectoryAnalysis:
     samples_per_period: int = 64
 
 
+def _missing_state(sec, ctx):
+    """The error of a trajectory without its start: a scene without [analysis], or without
+    its ``kind``, is one trajectory (the default kind), which needs ``state``."""
+    names = ", ".join(ctx.system.state_names)
+    if "analysis" not in ctx.doc:
+        sweep = "initial_conditions" in ctx.doc or "grid" in ctx.doc
+        return ConfigError(
+            f"{ctx.source}: [analysis]: missing; a scene without it is one trajectory "
+            f"(kind = \"trajectory\"), which needs [analysis] state = [{names}] (the "
+            "initial state)" + ("; for a sweep over [initial_conditions] set [analysis] "
+                                "kind = \"basins\", \"stability\" or \"map\"" if sweep
+                                else "; or set [analysis] kind (softimpact example lists "
+                                     "the kinds)"))
+    if not sec.has("kind"):
+        return sec.fail("state", f"is required: the initial {names} (no kind is set: the "
+                                 "scene is one trajectory, the default kind)")
+    return sec.fail("state", f"is required: the initial {names}")
+
+
 def read(sec, ctx) -> TrajectoryAnalysis:
     if not sec.has("state"):
-        raise sec.fail("state", f"is required: the initial {', '.join(ctx.system.state_names)}")
+        raise _missing_state(sec, ctx)
     analysis = TrajectoryAnalysis(
         kind="trajectory",
         state=read_state(sec, "state", ctx.system),
