@@ -15,6 +15,7 @@ from pathlib import Path
 import click
 
 from .config import ConfigError, check_writable, load_scene, result_path
+from .report.streams import reader_safe_streams
 
 
 def _user_errors(func):
@@ -138,6 +139,8 @@ _QUICK_EXIT: list = []
 def main():
     """softimpact: multistability of oscillators coupled through soft impacts."""
     _quick_exit()
+    # a reader that goes away (`| head`) drops the output, never the result
+    click.get_current_context().with_resource(reader_safe_streams())
 
 
 def _scheduler(ctx, param, value):
