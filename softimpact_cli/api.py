@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any
 
 from .config import ConfigError, Scene, check_writable, parse_scene, result_path
 from .config import load_scene as load_scene_file
+from .config.space import check_disk, check_memory
 
 if TYPE_CHECKING:  # importing the package must not import xarray
     import xarray as xr
@@ -232,6 +233,10 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     with output_lock(target, command_line()):
         if target.exists() and not overwrite:
             raise ConfigError(f"{target}: result exists; pass --overwrite to replace it")
+        if kind.result_bytes is not None:  # a full disk said now, not after the run
+            need = kind.result_bytes(sc)
+            check_memory(need, f"{sc.source}: [analysis]", "reduce what it records")
+            check_disk(target, need)
         ds = run_scene(sc, progress=bar, workers=workers, scheduler=scheduler, echo=echo)
         write_result(ds, target)
     return ds

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 from ..config.limits import MAX_TRAJECTORY_SAMPLES
 from ..config.reader import ConfigError
+from ..config.space import OVERHEAD_BYTES, size_text
 from . import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
 
 
@@ -65,11 +66,25 @@ def run(scene, progress=None, **_):
                               a.t0, a.periods, a.samples_per_period)
 
 
+def result_bytes(scene) -> int:
+    """Upper estimate of the stored trajectory, uncompressed: the dense samples (time and
+    state; one period more than asked when t0 falls between sections), the section
+    points (time, state, contacts, max contact function), the classified orbit and a
+    fixed overhead."""
+    a = scene.analysis
+    dim = len(scene.system.state_names)
+    samples = (a.periods + 1) * a.samples_per_period + 1
+    sections = a.periods + 1
+    orbit = scene.integrator.max_orbit_period * dim
+    return 8 * (samples * (1 + dim) + sections * (3 + dim) + orbit) + OVERHEAD_BYTES
+
+
 def plan(scene, workers=None, chunk_size=None) -> str:
     a = scene.analysis
     state = ", ".join(f"{x:g}" for x in a.state)
     return (f"trajectory: {a.periods} periods from ({state}) at t0 = {a.t0:g}, "
-            f"{a.samples_per_period} samples per period")
+            f"{a.samples_per_period} samples per period; result at most "
+            f"{size_text(result_bytes(scene))}")
 
 
 PLOT = PlotSpec(
@@ -78,4 +93,4 @@ PLOT = PlotSpec(
                         "steady state (default: a quarter, <= 20).", kind="int>=1"),))
 
 KINDS = (AnalysisKind("trajectory", "one trajectory, recorded and classified", read, plan,
-                      run=run, plot=PLOT),)
+                      run=run, result_bytes=result_bytes, plot=PLOT),)

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..config import ConfigError
+from ..config import ConfigError, space
 from .lock import output_lock
 from .provenance import command_line
 from .xarray_dask import install as _lazy_dask
@@ -91,7 +91,7 @@ def file_dataset(ds: xr.Dataset) -> tuple[xr.Dataset, dict]:
 
 def _free_bytes(folder: Path) -> int | None:
     try:
-        return shutil.disk_usage(folder).free
+        return space.free_bytes(folder)
     except OSError:
         return None
 
