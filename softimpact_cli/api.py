@@ -262,7 +262,38 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
     if "analysis" not in ds.attrs or "scene_text" not in ds.attrs:
         raise ConfigError(f"{path}: not a softimpact result file (an HDF5 file without the "
                           "'analysis' and 'scene_text' attributes softimpact writes)")
+    problem = result_problem(ds)
+    if problem:
+        raise ConfigError(f"{path}: {problem}")
     return ds
+
+
+def result_problem(ds: xr.Dataset) -> str | None:
+    """What keeps ``ds``, which carries softimpact's attributes, from being a result the
+    commands can read (None: nothing): its ``analysis`` names no kind, its ``complete``
+    is not 0 or 1, or a complete result lacks a variable every result of its kind holds
+    (a hand-made file, or one another tool took variables from)."""
+    from .kinds import KINDS
+
+    analysis = ds.attrs["analysis"]
+    kind = KINDS.get(analysis) if isinstance(analysis, str) else None
+    if kind is None:
+        return (f"not a softimpact result file (its 'analysis' attribute is {analysis!r}, "
+                f"not one of the kinds {', '.join(KINDS)})")
+    complete = ds.attrs.get("complete", 1)
+    if isinstance(complete, bool | str | bytes) or getattr(complete, "shape", ()) != () \
+            or complete not in (0, 1):
+        return (f"not a softimpact result file (its 'complete' attribute is {complete!r}, "
+                "not 0 or 1)")
+    if complete == 0 and not kind.sweep:  # only a sweep is written in parts
+        return (f"not a softimpact result file (its 'complete' attribute is 0, and a "
+                f"{kind.name} result is written whole)")
+    missing = [name for name in kind.variables if name not in ds]
+    if complete == 1 and missing:
+        return (f"a {kind.name} result without the variable{'s' * (len(missing) > 1)} "
+                f"{', '.join(missing)} that every {kind.name} result holds (damaged, or not "
+                "written by softimpact)")
+    return None
 
 
 def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | None = None, *,

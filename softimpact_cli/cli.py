@@ -406,8 +406,8 @@ def check(scene, sample, seed, as_json, fail_over):
 
 
 @main.command()
-@click.argument("result_a", type=click.Path(dir_okay=False))
-@click.argument("result_b", type=click.Path(dir_okay=False))
+@click.argument("result_a")  # checked when opened: one line naming the file (no usage text)
+@click.argument("result_b")
 @click.option("--max-label-change", type=click.FloatRange(0, 1), default=None, metavar="F",
               help="Exit 1 when more than this share of the labels differ (sweeps).")
 @click.option("--max-share-change", type=click.FloatRange(0, 1), default=None, metavar="F",

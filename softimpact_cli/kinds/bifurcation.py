@@ -130,5 +130,6 @@ KINDS = (AnalysisKind("bifurcation", "each solution followed along d, destructio
                       "located", read, plan, sections=sections, shrink=shrink, run=run,
                       check=check, info_after=info_lines, compare=compare,
                       compare_text=compare_text, progress_unit="branches",
+                      variables=("label", "destroyed_at", "branch_name"),
                       plot=PlotSpec("Section displacements of both bodies against d, "
                                     "destruction points marked.")),)

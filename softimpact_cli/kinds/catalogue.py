@@ -75,5 +75,6 @@ def report(ds) -> str:
 KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
                       read, plan, run=run, summary=summary, report=report,
                       searches_attractors=True, progress_unit="initial conditions",
+                      variables=("attractor_name", "attractor_period", "attractor_points"),
                       plot=PlotSpec("Attractors on the phase plane and one panel per "
                                     "combination of a catalogue RESULT.")),)

@@ -195,6 +195,7 @@ KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and u
                       "followed in one parameter; folds, period doublings, Neimark-Sacker "
                       "and grazing located", read, plan, sections=sections, shrink=shrink,
                       run=run, summary=summary, report=report,
+                      variables=("parameter", "state", "branch_name"),
                       info_after=lambda ds: report(ds).splitlines(),
                       progress_unit="branches",
                       plot=PlotSpec("Branches against the parameter (stable solid, unstable "

@@ -111,6 +111,10 @@ def map_counts(ds, scene, catalogue):
 SHOW_ERROR = PlotOption("--show-error", "show_error", "Print the result's measured label "
                         "error (its verification line) at the foot.", kind="flag")
 
+# what every complete sweep result holds (the label tables name the codes of ``label``);
+# store.sweep_store.RESULT_VARIABLES are those with one value per trajectory
+SWEEP_VARIABLES = ("label", "status", "period", "label_code", "label_name")
+
 PLOTS = {
     "basins": PlotSpec(
         "Basins of attraction of a plane sweep RESULT, one panel per grid point.",
@@ -139,7 +143,7 @@ KINDS = tuple(
                  check=check, summary=summarise, after_sweep=after,
                  outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
                  needs_attractors=name == "map",  # its counts need d_crit
-                 progress_unit="trajectories", plot=PLOTS[name])
+                 progress_unit="trajectories", plot=PLOTS[name], variables=SWEEP_VARIABLES)
     for name, description, summarise, after in (
         ("basins", "the label of every start on a plane, at every [grid] point", summary,
          None),

@@ -93,4 +93,5 @@ PLOT = PlotSpec(
                         "steady state (default: a quarter, <= 20).", kind="int>=1"),))
 
 KINDS = (AnalysisKind("trajectory", "one trajectory, recorded and classified", read, plan,
-                      run=run, result_bytes=result_bytes, plot=PLOT),)
+                      run=run, result_bytes=result_bytes, plot=PLOT,
+                      variables=("state", "section_state", "orbit")),)
