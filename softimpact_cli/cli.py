@@ -19,14 +19,18 @@ from .report.streams import reader_safe_streams
 
 
 def _user_errors(func):
-    """Turn ConfigError (and unreadable result files) into one line and exit status 2."""
+    """Turn ConfigError (and unreadable result files) into one line and exit status 2;
+    an error after which the run can be resumed (``resumable``, e.g. a Dask cluster
+    lost) says what was kept and the command that resumes (``ctx.meta["softimpact.kept"]``)."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
         except ConfigError as exc:
-            click.echo(f"softimpact: error: {exc}", err=True)
+            kept = click.get_current_context().meta.get("softimpact.kept")
+            more = f"; {kept()}" if getattr(exc, "resumable", False) and kept else ""
+            click.echo(f"softimpact: error: {exc}{more}", err=True)
             sys.exit(2)
 
     return wrapper
