@@ -210,11 +210,12 @@ class DaskExecutor:
                 # a Ctrl-C waits for the start to end (then closes the cluster): cut in
                 # half, the start would leave workers behind
                 with interrupt.deferred(), sigint_blocked_in_new_processes():
-                    # ERROR: a Ctrl-C cancels running chunks, which workers would log as
-                    # warnings
+                    # CRITICAL: a Ctrl-C or a close cancels running chunks and cuts the
+                    # workers' heartbeats, which they would log as warnings and errors with
+                    # tracebacks (a chunk's own error reaches the sweep as its exception)
                     cluster = LocalCluster(n_workers=n, threads_per_worker=1,
                                            processes=self.processes, dashboard_address=None,
-                                           silence_logs=logging.ERROR)
+                                           silence_logs=logging.CRITICAL)
                     client = Client(cluster)
                     if self.processes:
                         client.register_plugin(_ignore_sigint_plugin(),
@@ -253,14 +254,16 @@ class DaskExecutor:
 
 
 class _QuietDaskLogs:
-    """Dask's loggers (and tornado's, which logs its callbacks' errors) at CRITICAL while a
-    sweep runs on a cluster: a cluster closed or left without workers logs warnings and
+    """Dask's loggers (and tornado's and asyncio's, which log the errors of its callbacks
+    and tasks, e.g. a scatter cut by the cluster's close: "Task exception was never
+    retrieved") at CRITICAL while a sweep runs on a cluster: a cluster closed or
+    interrupted, or left without workers, logs warnings and
     tracebacks from its client, scheduler and workers before the sweep can say, in one
     line, what happened (ClusterLost); a worker's own error reaches the sweep as the
     chunk's exception. ``restore()`` puts the levels back."""
 
     def __init__(self):
-        names = ["tornado.application", "distributed",
+        names = ["tornado.application", "asyncio", "distributed",
                  *(n for n in list(logging.root.manager.loggerDict)
                    if n.startswith("distributed."))]
         self.levels = {name: logging.getLogger(name).level for name in names}
