@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
-from ..config.sweep import read_catalogue, read_grid, read_initial_conditions
+from ..config.sweep import GRID_AXES, read_catalogue, read_grid, read_initial_conditions
 from . import AnalysisKind, PlotOption, PlotSpec, Sections
 
 
@@ -111,9 +111,9 @@ def map_counts(ds, scene, catalogue):
 SHOW_ERROR = PlotOption("--show-error", "show_error", "Print the result's measured label "
                         "error (its verification line) at the foot.", kind="flag")
 
-# what every complete sweep result holds (the label tables name the codes of ``label``);
-# store.sweep_store.RESULT_VARIABLES are those with one value per trajectory
-SWEEP_VARIABLES = ("label", "status", "period", "label_code", "label_name")
+# what every complete sweep result holds and info, plot, compare and measure read: the
+# labels, the label tables that name their codes, the grid axes (GRID_AXES)
+SWEEP_VARIABLES = ("label", "label_code", "label_name", *GRID_AXES)
 
 PLOTS = {
     "basins": PlotSpec(

@@ -94,4 +94,4 @@ PLOT = PlotSpec(
 
 KINDS = (AnalysisKind("trajectory", "one trajectory, recorded and classified", read, plan,
                       run=run, result_bytes=result_bytes, plot=PLOT,
-                      variables=("state", "section_state", "orbit")),)
+                      variables=("state", "time", "section_state", "section_time", "variable")),)

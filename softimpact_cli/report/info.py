@@ -170,12 +170,15 @@ def sweep_summary(ds) -> dict:
         point["counts"] = {table[int(v)]: int(c) for v, c in zip(values, counts, strict=True)}
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)
-    status = ds["status"].values
-    from ..kernels.codes import STATUS_TABLE
+    status = {}
+    if "status" in ds:  # (a result made by hand may hold labels only: no totals then)
+        from ..kernels.codes import STATUS_TABLE
 
-    totals = {"converged": 0, "unresolved": 0, "diverged": 0}
-    for code, count in zip(*np.unique(status, return_counts=True), strict=True):
-        totals[STATUS_TABLE[int(code)][0]] += int(count)
+        totals = {"converged": 0, "unresolved": 0, "diverged": 0}
+        for code, count in zip(*np.unique(ds["status"].values, return_counts=True),
+                               strict=True):
+            totals[STATUS_TABLE[int(code)][0]] += int(count)
+        status["status"] = totals
     out = {}
     if "predicted_count" in ds:
         for k, index in enumerate(np.ndindex(*grid_shape)):
@@ -195,7 +198,7 @@ def sweep_summary(ds) -> dict:
             "n": int(ds.attrs.get("n", label.size)),
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),
             "labels": {str(c): n for c, n in table.items()},
-            "points": points, "status": totals}
+            "points": points, **status}
 
 
 def incomplete_summary(header, done: int) -> dict:
