@@ -9,6 +9,8 @@ SIGTERM as the end, and ask the kernel to send them SIGTERM when the parent dies
 ``PR_SET_PDEATHSIG``; elsewhere a thread polls the parent's pid). A sweep that stops
 early (Ctrl-C, SIGTERM, an error) cancels what is queued and terminates its workers
 instead of waiting for the running chunks; a Dask run closes its client and cluster.
+A Dask cluster that stops running the chunks (closed, or without workers or scheduler)
+ends the run with ClusterLost, one line; the chunks written so far are kept.
 """
 
 from __future__ import annotations
@@ -177,12 +179,10 @@ def sigint_blocked_in_new_processes() -> Iterator[None]:
 
 
 class DaskExecutor:
-    """A Dask distributed cluster: ``tcp://host:port``, or ``local:N`` for a LocalCluster
-    (worker processes; ``processes=False``: threads of this process, for tests)."""
+    """A Dask distributed cluster: ``tcp://host:port``, or ``local:N`` for a LocalCluster."""
 
-    def __init__(self, scheduler: str, processes: bool = True):
+    def __init__(self, scheduler: str):
         self.scheduler = scheduler
-        self.processes = processes
 
     def describe(self) -> str:
         return f"dask scheduler {self.scheduler}"
@@ -214,12 +214,11 @@ class DaskExecutor:
                     # workers' heartbeats, which they would log as warnings and errors with
                     # tracebacks (a chunk's own error reaches the sweep as its exception)
                     cluster = LocalCluster(n_workers=n, threads_per_worker=1,
-                                           processes=self.processes, dashboard_address=None,
+                                           processes=True, dashboard_address=None,
                                            silence_logs=logging.CRITICAL)
                     client = Client(cluster)
-                    if self.processes:
-                        client.register_plugin(_ignore_sigint_plugin(),
-                                               name="softimpact-ignore-sigint")
+                    client.register_plugin(_ignore_sigint_plugin(),
+                                           name="softimpact-ignore-sigint")
             else:
                 client = Client(self.scheduler)
             shared = client.scatter(context, broadcast=True)
@@ -256,11 +255,11 @@ class DaskExecutor:
 class _QuietDaskLogs:
     """Dask's loggers (and tornado's and asyncio's, which log the errors of its callbacks
     and tasks, e.g. a scatter cut by the cluster's close: "Task exception was never
-    retrieved") at CRITICAL while a sweep runs on a cluster: a cluster closed or
-    interrupted, or left without workers, logs warnings and
-    tracebacks from its client, scheduler and workers before the sweep can say, in one
-    line, what happened (ClusterLost); a worker's own error reaches the sweep as the
-    chunk's exception. ``restore()`` puts the levels back."""
+    retrieved") at CRITICAL while a sweep runs on a cluster: a cluster closed,
+    interrupted or left without workers logs warnings and tracebacks from its client,
+    scheduler and workers before the sweep can say in one line what happened
+    (ClusterLost, Interrupted); a worker's own error reaches the sweep as the chunk's
+    exception. ``restore()`` puts the levels back."""
 
     def __init__(self):
         names = ["tornado.application", "asyncio", "distributed",
