@@ -262,13 +262,13 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
     if "analysis" not in ds.attrs or "scene_text" not in ds.attrs:
         raise ConfigError(f"{path}: not a softimpact result file (an HDF5 file without the "
                           "'analysis' and 'scene_text' attributes softimpact writes)")
-    problem = result_problem(ds)
+    problem = _result_problem(ds)
     if problem:
         raise ConfigError(f"{path}: {problem}")
     return ds
 
 
-def result_problem(ds: xr.Dataset) -> str | None:
+def _result_problem(ds: xr.Dataset) -> str | None:
     """What keeps ``ds``, which carries softimpact's attributes, from being a result the
     commands can read (None: nothing): its ``analysis`` names no kind, its ``complete``
     is not 0 or 1, or a complete result lacks a variable every result of its kind holds
