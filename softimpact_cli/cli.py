@@ -205,7 +205,7 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
       basins       the label of every start on a plane, at every [grid] point
       stability    basin stability: shares of random starts, 95% Wilson intervals
       dcrit        critical distance d_crit(phi) of every combination
-      bifurcation  each solution followed along d, destruction points located
+      bifurcation  each solution followed along d (or w, F, ...), destruction located
       map          coexisting solutions over two parameters, predicted and found
       design       (d, phi, k_c, c_c) where only the target survives (see design)
 
@@ -351,16 +351,18 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
 
 
 def _report_verification(ds) -> bool:
-    """Print the label-error line; a note when inconclusive, a warning when over the
-    threshold. Returns whether it is over the threshold."""
+    """Print the label-error line; a note when some rerun label disagreed although the
+    error is within the threshold, a warning when it is over. A clean run (none disagreed,
+    whatever the bound) gets no note. Returns whether it is over the threshold."""
     from .report.verification import verification_line
-    from .sweep.verification import INCONCLUSIVE, OVER
+    from .sweep.verification import OVER, VERIFIED
 
     click.echo(verification_line(ds.attrs))
     status = ds.attrs["verify_status"]
-    if status == INCONCLUSIVE:
-        click.echo(f"softimpact: note: label error inconclusive: {ds.attrs['verify_message']}",
-                   err=True)
+    if status == VERIFIED and int(ds.attrs.get("verify_disagreements", 0)) > 0:
+        click.echo(f"softimpact: note: {ds.attrs['verify_disagreements']} of "
+                   f"{ds.attrs['verify_sample']} rerun labels disagreed "
+                   f"({ds.attrs['verify_changes']}); {ds.attrs['verify_message']}", err=True)
     if status == OVER:
         click.echo(f"softimpact: warning: label error over the threshold: "
                    f"{ds.attrs['verify_message']}", err=True)

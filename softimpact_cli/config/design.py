@@ -11,11 +11,12 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
+from .axes import COUPLING_AXES
 from .expressions import parse_multiple
 from .limits import MAX_INITIAL_CONDITIONS, MAX_SEED
 from .reader import ConfigError, Section
 
-DESIGN_AXES = ("d", "phi", "k_c", "c_c")
+DESIGN_AXES = COUPLING_AXES  # a design searches over the coupling
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from ..config.axes import allowed_axes
 from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue
 from . import AnalysisKind, PlotSpec, Sections, read_state
@@ -49,9 +50,8 @@ class ContinuationAnalysis:
 
 
 def read(sec, ctx) -> ContinuationAnalysis:
-    from ..analysis.shooting import PARAMETERS
-
-    allowed = tuple(p for p, bodies in PARAMETERS.items() if ctx.system.bodies in bodies)
+    # any model parameter the scene has (config.axes: the [grid] axes but t0)
+    allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
     parameter = sec.choice("parameter", None, allowed)
     low, high = sec.number("low", None), sec.number("high", None)
     if not low < high:

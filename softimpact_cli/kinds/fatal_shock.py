@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..config.axes import GRID_AXES
 from ..config.limits import MAX_SEED
 from ..config.reader import positive
 from ..config.sweep import read_catalogue
@@ -73,7 +74,6 @@ def run(scene, progress=None, workers=None, **_):
     from ..analysis.catalogue import scene_catalogue
     from ..analysis.engine import Problem, record_trajectory
     from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
-    from ..config.sweep import GRID_AXES
     from ..sweep import label_states
 
     a = scene.analysis

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ..config.axes import COUPLING_AXES, GRID_AXES
 from ..kernels.codes import CLASSIFIED_BY
 from ..kinds import KINDS
 from .verification import verification_summary
@@ -133,12 +134,16 @@ def format_catalogue(ds) -> str:
     return "\n".join(lines)
 
 
-GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
-
-
 def grid_dims(ds) -> tuple[str, ...]:
-    """The dims a sweep's grid points span: GRID_AXES, or ("panel",)."""
+    """The dims a sweep's grid points span: its swept model parameters and GRID_AXES, or
+    ("panel",)."""
     return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+
+
+def grid_axes(ds) -> tuple[str, ...]:
+    """Every axis with a value at each grid point: the model parameters the sweep spans
+    besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES."""
+    return tuple(str(ds.attrs.get("grid_parameters", "")).split()) + GRID_AXES
 
 
 def grid_point(ds, index: tuple[int, ...]) -> dict:
@@ -147,7 +152,7 @@ def grid_point(ds, index: tuple[int, ...]) -> dict:
     dims = grid_dims(ds)
     sel = dict(zip(dims, index, strict=True))
     point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
-             for a in GRID_AXES}
+             for a in grid_axes(ds)}
     if ds.attrs.get("t0_mode") == "random":
         point["t0"] = "random"
     return point
@@ -241,16 +246,16 @@ def compare_shares(plane, stability) -> list[dict]:
 
     Points match on (d, phi, k_c, c_c) to 1e-9; t0 of both is reported.
     """
-    a = {tuple(round(p[k], 9) for k in GRID_AXES[:4]): p for p in sweep_summary(plane)["points"]}
+    a = {tuple(round(p[k], 9) for k in COUPLING_AXES): p for p in sweep_summary(plane)["points"]}
     rows = []
     for point in stability_summary(stability):
-        key = tuple(round(point[k], 9) for k in GRID_AXES[:4])
+        key = tuple(round(point[k], 9) for k in COUPLING_AXES)
         if key not in a:
             continue
         names = sorted(set(a[key]["fractions"]) | {g for g in point["shares"]
                                                     if "(" not in g})
         rows.append({
-            **{k: point[k] for k in GRID_AXES[:4]},
+            **{k: point[k] for k in COUPLING_AXES},
             "t0_plane": a[key]["t0"], "t0_stability": point["t0"],
             "shares": {n: {"plane": a[key]["fractions"].get(n, 0.0),
                            "stability": point["shares"].get(n, {}).get("share", 0.0),
@@ -282,7 +287,7 @@ def design_point(ds, i: int) -> dict:
     exists = int(ds["target_exists"].values[i])
     mult = ds["multiplier_re"].values[i] + 1j * ds["multiplier_im"].values[i]
     return _finite({
-        **{a: float(ds[f"point_{a}"].values[i]) for a in ("d", "phi", "k_c", "c_c")},
+        **{a: float(ds[f"point_{a}"].values[i]) for a in COUPLING_AXES},
         "n": int(ds["n_samples"].values[i]),
         "share": float(share[t]), "ci95": [float(lo[t]), float(hi[t])],
         "impacting_share": float(share[m]), "impacting_ci95": [float(lo[m]), float(hi[m])],

@@ -16,6 +16,8 @@ import numpy as np
 import xarray as xr
 
 from ..config import Scene
+from ..config.axes import GRID_AXES
+from ..config.sweep import Grid, InitialConditions
 from ..store.provenance import history_line, provenance
 from .chunks import RESULT_FIELDS
 from .executors import make_executor
@@ -74,7 +76,6 @@ def label_states(scene: Scene, point: dict, states: np.ndarray, t0: float = 0.0,
     over that list of states (any kind's scene will do)."""
     from dataclasses import replace
 
-    from ..config.sweep import GRID_AXES, Grid, InitialConditions
     from ..kinds.sweeps import SweepAnalysis
 
     values = {**scene.values, **point, "t0": float(t0)}

@@ -8,7 +8,8 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.labels import latex_of, name_of
-from ..config import GRID_AXES, GRID_UNITS, Scene
+from ..config import Scene
+from ..config.axes import axis_units
 from .chunks import RESULT_FIELDS
 
 ATTRIBUTES = {
@@ -59,7 +60,8 @@ def t0_attrs(t0_values, period: float, random: bool, swept: bool) -> dict:
 
 def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
                   names: tuple[str, ...], t0_per_sample: np.ndarray | None) -> xr.Dataset:
-    """Dataset with dims (d, phi, k_c, c_c, t0, *initial-condition dims).
+    """Dataset with dims (*swept model parameters, d, phi, k_c, c_c, t0,
+    *initial-condition dims) (``Grid.dims``).
 
     ``arrays``: flat per-trajectory arrays (RESULT_FIELDS) in plan order; ``orbits``:
     {(grid point, code): (flat index, section points)} with the first occurrence kept.
@@ -69,9 +71,11 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     dims = grid.dims + ic.dims
     shape = grid.shape + ic.shape
     along = ("panel",) if grid.panels else None
-    coords: dict = {a: (along or a, np.array(grid.axes[a]), {"units": GRID_UNITS[a]})
-                    for a in GRID_AXES}
-    period = 2 * np.pi / float(scene.values["w"])
+    coords: dict = {a: (along or a, np.array(grid.axes[a]), {"units": axis_units(a)})
+                    for a in grid.names}
+    # the forcing period of the scene, or of the first grid point when w is swept (each
+    # point then has its own, 2 pi / w, and starts at t0 = 0: config.sweep.W_SWEPT_T0)
+    period = 2 * np.pi / float(grid.point(0)["w"] if "w" in grid.swept else scene.values["w"])
     if "t0" not in grid.swept and ic.t0 is not None:  # the fixed start actually used
         coords["t0"] = (along or "t0", np.full(len(grid.axes["t0"]), float(ic.t0)),
                         coords["t0"][2])
@@ -127,6 +131,8 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
         "forcing_period": period,
         "catalogue_names": "; ".join(names),
     }
+    if grid.parameters:  # model parameters swept besides GRID_AXES (their own dims)
+        attrs["grid_parameters"] = " ".join(grid.parameters)
     if ic.kind == "plane":
         attrs["plane_fixed"] = ", ".join(f"{k}={v}" for k, v in (ic.fixed or {}).items())
     return xr.Dataset(data, coords=coords, attrs=attrs)
