@@ -288,11 +288,12 @@ def _result_problem(ds: xr.Dataset) -> str | None:
     if complete == 0 and not kind.sweep:  # only a sweep is written in parts
         return (f"not a softimpact result file (its 'complete' attribute is 0, and a "
                 f"{kind.name} result is written whole)")
-    missing = [name for name in kind.variables if name not in ds]
+    # a sweep over model parameters also has an axis for each (``grid_parameters``)
+    swept = str(ds.attrs.get("grid_parameters", "")).split() if kind.sweep else []
+    missing = [name for name in (*kind.variables, *swept) if name not in ds]
     if complete == 1 and missing:
-        return (f"a {kind.name} result without the variable{'s' * (len(missing) > 1)} "
-                f"{', '.join(missing)} that every {kind.name} result holds (damaged, or not "
-                "written by softimpact)")
+        return (f"a {kind.name} result without its variable{'s' * (len(missing) > 1)} "
+                f"{', '.join(missing)} (damaged, or not written by softimpact)")
     return None
 
 

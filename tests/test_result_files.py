@@ -45,7 +45,7 @@ def test_a_result_without_variables(kind, tmp_path):
     path = hand_made(tmp_path / "r.h5", {"analysis": kind, "scene_text": "", "complete": 1})
     for name, args in commands(path, kind, tmp_path).items():
         line = one_line_error(CliRunner().invoke(main, args), path)
-        assert f"a {kind} result without the variable" in line, (name, line)
+        assert f"a {kind} result without its variable" in line, (name, line)
         assert ", ".join(KINDS[kind].variables) in line, (name, line)
 
 
@@ -88,3 +88,12 @@ def test_malformed_attribute_sets(tmp_path, analysis, complete, scene, data):
             assert result.exit_code == 0, result.output
             continue
         one_line_error(result, path)
+
+
+def test_a_sweep_without_the_axis_of_a_swept_parameter(tmp_path):
+    path = hand_made(tmp_path / "r.h5", {"analysis": "basins", "scene_text": "",
+                                         "complete": 1, "grid_parameters": "w"},
+                     KINDS["basins"].variables)
+    line = one_line_error(CliRunner().invoke(main, ["info", path]), path)
+    assert line.endswith(": a basins result without its variable w (damaged, or not "
+                         "written by softimpact)"), line
