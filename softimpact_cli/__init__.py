@@ -1,7 +1,9 @@
 """softimpact: multistability of oscillators coupled through soft impacts.
 
-The Python API (see ``api``): ``load_scene``, ``run``, ``sweep``, ``open_result`` and the
-figures ``plot.<kind>(ds, ax=None)``, e.g. ``import softimpact_cli as si;
+The Python API (see ``api``): ``load_scene``, ``run``, ``sweep``, ``open_result``,
+``kinds()``, ``System`` (one parameter point: ``classify(u0)``, ``api_system``), the
+accessor ``ds.si`` (``shares()``, ``names()``: ``accessor``) and the figures
+``plot.<kind>(ds, ax=None)``, e.g. ``import softimpact_cli as si;
 si.plot.basins(si.run(si.load_scene("configs/demo_basins.toml"), quick=True))``.
 Importing the package loads neither matplotlib nor xarray; ``plot`` is imported on
 first use.
@@ -22,13 +24,15 @@ COMMAND_GC_THRESHOLD = (50_000, 20, 20)
 if _sys.argv and _os.path.basename(_sys.argv[0]) == "softimpact":
     _gc.set_threshold(*COMMAND_GC_THRESHOLD)
 
-# The package ``sweep`` first: importing a submodule binds it as an attribute of this
-# package, which would replace the function of the same name bound below if it came
-# later. So ``softimpact_cli.sweep`` is the function; ``from softimpact_cli.sweep import
-# run_sweep`` works as before.
+# The packages ``sweep`` and ``kinds`` first (``api`` imports ``kinds``): importing a
+# submodule binds it as an attribute of this package, which would replace the function
+# of the same name bound below if it came later. So ``softimpact_cli.sweep`` and
+# ``softimpact_cli.kinds`` are the functions; ``from softimpact_cli.sweep import
+# run_sweep`` and ``from softimpact_cli.kinds import KINDS`` work as before.
 from . import sweep as _sweep_package  # noqa: E402, F401
 from .api import (  # noqa: E402
     ConfigError,
+    kinds,
     load_scene,
     measure,
     open_result,
@@ -37,14 +41,20 @@ from .api import (  # noqa: E402
     sweep,
 )
 
-__all__ = ["ConfigError", "load_scene", "measure", "open_result", "plot", "run", "shrink_scene",
-           "sweep"]
+__all__ = ["Classified", "ConfigError", "System", "kinds", "load_scene", "measure",
+           "open_result", "plot", "run", "shrink_scene", "sweep"]
+
+if "xarray" in _sys.modules:  # ds.si on datasets xarray opens itself (else on first use)
+    from . import accessor as _accessor  # noqa: E402, F401
 
 
 def __getattr__(name: str):
-    # the figures import matplotlib: only when a notebook first asks for them
-    if name == "plot":
-        import importlib
+    # the figures import matplotlib, System xarray and the sweep machinery: only when a
+    # notebook first asks for them
+    import importlib
 
+    if name == "plot":
         return importlib.import_module(".plot", __name__)
+    if name in ("System", "Classified"):
+        return getattr(importlib.import_module(".api_system", __name__), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -10,6 +10,13 @@
     fig = si.plot.basins(ds, ax=ax)          # draws on ax, returns its Figure
     si.sweep(scene, "basins.h5", resume=True)  # the resumable result file of the CLI
     fr = si.measure("basins.h5", "fractality.h5")  # basin entropy, alpha, Wada test
+    ds.si.shares()                           # each label's share, 95% interval (accessor.py)
+    si.System(scene).classify([8, 0, -4, 0]) # one start's label (api_system.py)
+    si.kinds()                               # every analysis kind, one help line each
+
+Datasets come in the dim order of their file (``store.layout``: a plane's variables end
+in its second axis, then its first, as ``xarray.open_dataset`` reads them); the figures
+and :func:`measure` take either order.
 
 The command line is a thin layer over these functions: ``softimpact sweep`` shrinks the
 scene with :func:`shrink_scene`, runs it with :func:`sweep`, and ``softimpact plot`` /
@@ -34,12 +41,13 @@ from typing import TYPE_CHECKING, Any
 from .config import ConfigError, Scene, check_writable, parse_scene, result_path
 from .config import load_scene as load_scene_file
 from .config.space import check_disk, check_memory
+from .kinds import KINDS
 
 if TYPE_CHECKING:  # importing the package must not import xarray
     import xarray as xr
 
-__all__ = ["ConfigError", "load_scene", "measure", "open_result", "run", "shrink_scene",
-           "sweep"]
+__all__ = ["ConfigError", "kinds", "load_scene", "measure", "open_result", "run",
+           "shrink_scene", "sweep"]
 
 SceneLike = Scene | str | os.PathLike | Mapping[str, Any]
 
@@ -147,12 +155,30 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     kind = kind_of(sc.analysis.kind)
     bar = _progress(progress, kind.progress_unit)
     if kind.sweep:
-        return _sweep_in_memory(sc, workers, scheduler, chunk_size, echo or _silent, bar,
-                                verify, verify_sample)
+        return _handed_out(_sweep_in_memory(sc, workers, scheduler, chunk_size,
+                                            echo or _silent, bar, verify, verify_sample))
     from .kinds.run import run_scene
 
-    return run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
-                     echo=echo or _silent)
+    return _handed_out(run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
+                                 echo=echo or _silent))
+
+
+def _handed_out(ds: xr.Dataset) -> xr.Dataset:
+    """A dataset as the API hands it out: in the dim order of its file (a plane's
+    variables end in (second axis, first axis), as ``xarray.open_dataset`` reads them, so
+    that ``ds.label.plot()`` puts the first axis horizontally; ``store.layout``), with
+    the ``ds.si`` accessor registered (``accessor.py``)."""
+    # here, not at the top: importing the package must not import xarray
+    from . import accessor  # noqa: F401 (registers ds.si)
+    from .store.layout import file_order
+
+    return file_order(ds)
+
+
+def kinds() -> dict[str, str]:
+    """Every analysis kind (``[analysis] kind = ...``) with its one-line help, in the
+    order ``softimpact sweep --help`` lists them (the kinds registry)."""
+    return {name: kind.description for name, kind in KINDS.items()}
 
 
 def _check_verify_sample(verify_sample) -> None:
@@ -217,9 +243,10 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     if kind.sweep:
         from .sweep.verification import sweep_verified
 
-        return sweep_verified(sc, target, verify=verify, sample=verify_sample, resume=resume,
-                              echo=echo, workers=workers, scheduler=scheduler,
-                              overwrite=overwrite, chunk_size=chunk_size, progress=bar)
+        return _handed_out(sweep_verified(
+            sc, target, verify=verify, sample=verify_sample, resume=resume, echo=echo,
+            workers=workers, scheduler=scheduler, overwrite=overwrite, chunk_size=chunk_size,
+            progress=bar))
     if resume:
         raise ConfigError(f"{sc.source}: resume is for sweeps (kinds "
                           f"{', '.join(SWEEP_KINDS)}); a {kind.name} reruns whole")
@@ -239,12 +266,19 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
             check_disk(target, need)
         ds = run_scene(sc, progress=bar, workers=workers, scheduler=scheduler, echo=echo)
         write_result(ds, target)
-    return ds
+    return _handed_out(ds)
 
 
 def open_result(path: str | os.PathLike) -> xr.Dataset:
-    """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed).
+    """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed), in
+    the dim order ``xarray.open_dataset`` gives it (as :func:`run` hands results out).
     ConfigError when it is missing, a directory, or not a softimpact result."""
+    return _handed_out(read_result(path))
+
+
+def read_result(path: str | os.PathLike) -> xr.Dataset:
+    """:func:`open_result` in the package's in-memory dim order (``store.layout``): what
+    the command line's ``plot``, ``info`` and ``compare`` read."""
     from .store import open_result as read
 
     p = Path(path)
@@ -273,8 +307,6 @@ def _result_problem(ds: xr.Dataset) -> str | None:
     commands can read (None: nothing): its ``analysis`` names no kind, its ``complete``
     is not 0 or 1, or a complete result lacks a variable every result of its kind holds
     (a hand-made file, or one another tool took variables from)."""
-    from .kinds import KINDS
-
     analysis = ds.attrs["analysis"]
     kind = KINDS.get(analysis) if isinstance(analysis, str) else None
     if kind is None:
@@ -315,9 +347,10 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
     import xarray as xr
 
     from .analysis.fractality import fractality, plane_problem
+    from .store.layout import memory_order
 
     name = "result" if isinstance(result, xr.Dataset) else os.fspath(result)
-    ds = result if isinstance(result, xr.Dataset) else open_result(result)
+    ds = memory_order(result) if isinstance(result, xr.Dataset) else read_result(result)
     problem = plane_problem(ds)
     if problem:
         raise ConfigError(f"{name}: {problem}")

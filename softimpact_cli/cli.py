@@ -37,9 +37,9 @@ def _user_errors(func):
 
 
 def _open(path: str):
-    from .api import open_result
+    from .api import read_result
 
-    return open_result(path)
+    return read_result(path)
 
 
 # progress lines started by the running command: its end stops their timers, whatever

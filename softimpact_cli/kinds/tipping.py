@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..config.reader import ConfigError
 from . import AnalysisKind, PlotOption, PlotSpec, Sections
 from .sweeps import (
@@ -48,7 +49,7 @@ def add_tipping(ds, scene, catalogue):
     from ..sweep import label_states
 
     dims = grid_dims(ds)
-    ic_dims = str(ds.attrs["ic_dims"]).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     label = ds["label"].transpose(*dims, *ic_dims).values.reshape(2, -1)
     codes = [int(c) for c in ds["label_code"].values]
     table = dict(zip(codes, (str(n) for n in ds["label_name"].values), strict=True))

@@ -25,6 +25,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
+from ..store.layout import memory_order
+
 if TYPE_CHECKING:  # matplotlib is imported inside the functions that draw
     from matplotlib.figure import Figure
 
@@ -290,6 +293,7 @@ def basins(ds, ax=None, *, max_panels: int = 36, show_error: bool = False) -> Fi
     measured label error at the foot (``error_note``)."""
     from .basins_figure import draw_basins
 
+    ds = _in_memory_order(ds)
     if ds.attrs.get("ic_kind") != "plane":
         raise ValueError(f"plot.basins: needs a sweep over a plane of initial conditions, "
                          f"got a {ds.attrs.get('analysis')!r} result with "
@@ -308,7 +312,8 @@ def stability(ds, ax=None, *, against: str | None = None, show_error: bool = Fal
     from ..analysis.stability import basin_stability
     from .stability_figure import draw_stability
 
-    swept = str(_expect(ds, "stability").attrs.get("grid_swept", "")).split()
+    ds = _expect(ds, "stability")
+    swept = attribute_list(ds.attrs, "grid_swept")
     axis = against or (swept[0] if swept else "c_c")
     if attractors:
         from .section_clouds import draw_clouds
@@ -332,7 +337,8 @@ def dcrit(ds, ax=None, *, combination: str | None = None) -> Figure:
     ``ds.combination_label``)."""
     from .dcrit_figure import draw_dcrit
 
-    names = [str(n) for n in _expect(ds, "dcrit")["combination_label"].values]
+    ds = _expect(ds, "dcrit")
+    names = [str(n) for n in ds["combination_label"].values]
     if combination is not None and combination not in names:
         raise ValueError(f"combination: {combination!r} is not one of {', '.join(names)}")
     return draw_dcrit(ds, combination, ax)
@@ -359,7 +365,8 @@ def tipping(ds, ax=None, *, no_basins: bool = False, show_error: bool = False) -
     matrix alone). ``show_error``: the measured label error at the foot."""
     from .tipping_figure import draw_tipping
 
-    fig = draw_tipping(_expect(ds, "tipping"), no_basins, ax)
+    ds = _expect(ds, "tipping")
+    fig = draw_tipping(ds, no_basins, ax)
     return error_note(fig, ds) if show_error else fig
 
 
@@ -393,8 +400,16 @@ KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation
 
 
 def _expect(ds, kind: str):
-    """``ds`` when it holds a ``kind`` result (or says nothing), else a ValueError."""
+    """``ds`` (in the in-memory dim order) when it holds a ``kind`` result (or says
+    nothing), else a ValueError."""
     found = ds.attrs.get("analysis")
     if found is not None and found != kind:
         raise ValueError(f"plot.{kind}: ds holds a {found!r} result, not a {kind} result")
-    return ds
+    return _in_memory_order(ds)
+
+
+def _in_memory_order(ds):
+    """A result as the figures index it: a plane's variables ending in (first axis,
+    second axis), whichever order it came in (``si.run`` and ``xarray.open_dataset``
+    hand it out in the file's order; ``store.layout``)."""
+    return memory_order(ds)

@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
+from ..analysis.catalogue import search_shares
 from ..config.axes import COUPLING_AXES, GRID_AXES
 from ..kernels.codes import CLASSIFIED_BY
 from ..kinds import KINDS
@@ -93,7 +95,8 @@ def dcrit_summary(ds) -> dict:
 
 
 def catalogue_summary(ds) -> dict:
-    """Attractors (number, period, amplitude, multipliers, share, points) and combinations."""
+    """Attractors (number, period, amplitude, multipliers, share of the one-body search,
+    points) and combinations."""
     attractors = []
     for i, number in enumerate(ds["attractor"].values):
         p = int(ds["attractor_period"].values[i])
@@ -105,7 +108,7 @@ def catalogue_summary(ds) -> dict:
             "amplitude": float(ds["attractor_amplitude"].values[i]),
             "multipliers": [[float(a), float(b)] for a, b in zip(re, im, strict=True)
                             if np.isfinite(a)],
-            "share": float(ds["attractor_share"].values[i]),
+            "search_share": float(search_shares(ds)[i]),
             "residual": float(ds["attractor_residual"].values[i]),
             "points": ds["attractor_points"].values[i, :p].tolist(),
         })
@@ -120,11 +123,11 @@ def format_catalogue(ds) -> str:
     """A plain-text table of a catalogue result."""
     summary = catalogue_summary(ds)
     lines = [f"{'attractor':10s} {'period':>6s} {'amplitude':>10s} {'|multipliers|':>20s} "
-             f"{'share':>7s} {'residual':>9s}"]
+             f"{'search':>7s} {'residual':>9s}"]
     for a in summary["attractors"]:
         mods = ", ".join(f"{np.hypot(*m):.4f}" for m in a["multipliers"])
         lines.append(f"{a['name']:10s} {a['period']:6d} {a['amplitude']:10.4f} {mods:>20s} "
-                     f"{a['share']:7.3f} {a['residual']:9.1e}")
+                     f"{a['search_share']:7.3f} {a['residual']:9.1e}")
     counts = summary["counts"]
     if counts:  # a sweep's stored catalogue keeps no sample counts
         lines.append("samples: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
@@ -136,14 +139,16 @@ def format_catalogue(ds) -> str:
 
 def grid_dims(ds) -> tuple[str, ...]:
     """The dims a sweep's grid points span: its swept model parameters and GRID_AXES, or
-    ("panel",)."""
-    return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+    ("panel",); without those a selection took away (``ds.sel(d=10)`` keeps d as a
+    scalar coordinate)."""
+    dims = attribute_list(ds.attrs, "grid_dims", GRID_AXES)
+    return tuple(d for d in dims if d in ds.dims or d not in ds.coords)
 
 
 def grid_axes(ds) -> tuple[str, ...]:
     """Every axis with a value at each grid point: the model parameters the sweep spans
     besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES."""
-    return tuple(str(ds.attrs.get("grid_parameters", "")).split()) + GRID_AXES
+    return tuple(attribute_list(ds.attrs, "grid_parameters")) + GRID_AXES
 
 
 def grid_point(ds, index: tuple[int, ...]) -> dict:
@@ -163,7 +168,7 @@ def sweep_summary(ds) -> dict:
     codes = [int(c) for c in ds["label_code"].values]
     names = [str(n) for n in ds["label_name"].values]
     table = dict(zip(codes, names, strict=True))
-    ic_dims = str(ds.attrs.get("ic_dims", "")).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     label = ds["label"].transpose(*grid_dims(ds), *ic_dims).values
     grid_shape = label.shape[: len(grid_dims(ds))]
     flat = label.reshape(int(np.prod(grid_shape)), -1)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..config.axes import COUPLING_AXES, every_axis
 from .verification import verification_lines
 
@@ -40,7 +41,7 @@ def text(value) -> str:
 def _parameters(summary: dict, ds) -> str:
     """The fixed parameters: the kind's varied ones and a sweep's grid axes left out."""
     left_out = set(NOT_FIXED.get(summary.get("analysis"), ()))
-    left_out |= set(str(ds.attrs.get("grid_swept", "")).split())
+    left_out |= set(attribute_list(ds.attrs, "grid_swept"))
     kept = [p for p in str(summary["parameters"]).split(", ")
             if p.split("=", 1)[0] not in left_out]
     return ", ".join(f"{k}={float(v):.6g}" if _is_number(v) else f"{k}={v}"

@@ -123,16 +123,16 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     attrs = {
         "analysis": scene.analysis.kind,
         "ic_kind": ic.kind,
-        "ic_dims": " ".join(ic.dims),
-        "grid_swept": " ".join(grid.swept),
-        "grid_dims": " ".join(grid.dims),
+        "ic_dims": list(ic.dims),  # lists: arrays in the file (analysis/attributes.py)
+        "grid_swept": list(grid.swept),
+        "grid_dims": list(grid.dims),
         **t0_attrs(coords["t0"][1], period, t0_per_sample is not None,
                    "t0" in grid.swept),
         "forcing_period": period,
-        "catalogue_names": "; ".join(names),
+        "catalogue_names": list(names),
     }
     if grid.parameters:  # model parameters swept besides GRID_AXES (their own dims)
-        attrs["grid_parameters"] = " ".join(grid.parameters)
+        attrs["grid_parameters"] = list(grid.parameters)
     if ic.kind == "plane":
         attrs["plane_fixed"] = ", ".join(f"{k}={v}" for k, v in (ic.fixed or {}).items())
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -17,7 +17,7 @@ RK4_STUDY = dict(method="rk4", steps_per_period=1440, locate_switches=False)
 
 def _attractors(ds) -> list:
     """The catalogue's attractors rebuilt from a result (no search rerun)."""
-    from ...analysis.catalogue import Attractor
+    from ...analysis.catalogue import Attractor, search_shares
 
     out = []
     for i, number in enumerate(ds["attractor"].values):
@@ -25,7 +25,7 @@ def _attractors(ds) -> list:
         mult = ds["multiplier_re"].values[i] + 1j * ds["multiplier_im"].values[i]
         out.append(Attractor(int(number), p, ds["attractor_points"].values[i, :p].copy(),
                              float(ds["attractor_amplitude"].values[i]),
-                             mult[np.isfinite(mult)], float(ds["attractor_share"].values[i]),
+                             mult[np.isfinite(mult)], float(search_shares(ds)[i]),
                              float(ds["attractor_residual"].values[i])))
     return out
 
