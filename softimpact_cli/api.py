@@ -38,6 +38,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .analysis.attributes import attribute_list
 from .config import ConfigError, Scene, check_writable, parse_scene, result_path
 from .config import load_scene as load_scene_file
 from .config.space import check_disk, check_memory
@@ -321,7 +322,7 @@ def _result_problem(ds: xr.Dataset) -> str | None:
         return (f"not a softimpact result file (its 'complete' attribute is 0, and a "
                 f"{kind.name} result is written whole)")
     # a sweep over model parameters also has an axis for each (``grid_parameters``)
-    swept = str(ds.attrs.get("grid_parameters", "")).split() if kind.sweep else []
+    swept = attribute_list(ds.attrs, "grid_parameters") if kind.sweep else []
     missing = [name for name in (*kind.variables, *swept) if name not in ds]
     if complete == 1 and missing:
         return (f"a {kind.name} result without its variable{'s' * (len(missing) > 1)} "

@@ -3,6 +3,7 @@ estimate bounds what is stored, --dry-run shows it, and a disk too full for it i
 one line before any integration (on eab4deb a 15 MB trajectory computed 11.8 s, then
 failed on the full disk)."""
 
+import importlib
 import os
 import shutil
 from collections import namedtuple
@@ -63,7 +64,9 @@ def test_too_little_disk_space_is_refused_before_computing(tmp_path, monkeypatch
     def computed(*args, **kwargs):
         raise AssertionError("the trajectory was computed")
 
-    monkeypatch.setattr("softimpact_cli.kinds.run.run_scene", computed)
+    # the module itself (softimpact_cli.kinds is also the API's function of that name)
+    monkeypatch.setattr(importlib.import_module("softimpact_cli.kinds.run"), "run_scene",
+                        computed)
     result = CliRunner().invoke(main, ["sweep", str(scene), "-o", str(out)])
     assert result.exit_code == 2, result.output
     lines = result.output.strip().splitlines()
