@@ -92,9 +92,13 @@ def _interruptible(func):
 def _warn_outcomes(ds, scene, strict: bool) -> None:
     """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
     --strict, exit with report.outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
-    from .report.outcomes import STRICT_STATUS, outcome_warnings
+    from .report.outcomes import STRICT_STATUS, outcome_notes, outcome_warnings
 
-    messages = outcome_warnings(ds, scene.integrator.max_periods)
+    for note in outcome_notes(ds):
+        click.echo(f"softimpact: note: {note}", err=True)
+    # every kind with outcome shares (sweeps, tipping, design) runs the second stage
+    messages = outcome_warnings(ds, scene.integrator.max_periods,
+                                section_periods=scene.integrator.section_periods)
     for message in messages:
         click.echo(f"softimpact: warning: {message}", err=True)
     if messages and strict:

@@ -9,13 +9,20 @@ import numpy as np
 from ..analysis.attributes import attribute_list
 from ..analysis.catalogue import search_shares
 from ..config.axes import COUPLING_AXES, GRID_AXES
-from ..kernels.codes import CLASSIFIED_BY
+from ..kernels.codes import (
+    BASE_WIDTH,
+    CLASSIFIED_BY,
+    NONPERIODIC_BASES,
+    STATUS_TABLE,
+    UNRESOLVED_LABEL,
+)
 from ..kinds import KINDS
 from .verification import verification_summary
 
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "catalogue_source", "t0_mode",
-    "analysis", "model", "bodies", "parameters", "outcome", "status_message", "period",
+    "analysis", "model", "bodies", "parameters", "outcome", "label", "status_message",
+    "classified_by", "second_stage", "period",
     "periods_used", "contacts_on_orbit", "max_penetration", "impacting", "t0",
     "integrator_resolved_method", "integrator_rtol", "integrator_atol",
     "integrator_steps_per_period", "integrator_locate_switches", "wall_s", "complete",
@@ -182,14 +189,15 @@ def sweep_summary(ds) -> dict:
         points.append(point)
     status = {}
     if "status" in ds:  # (a result made by hand may hold labels only: no totals then)
-        from ..kernels.codes import STATUS_TABLE
-
         totals = {"converged": 0, "unresolved": 0, "diverged": 0}
         for code, count in zip(*np.unique(ds["status"].values, return_counts=True),
                                strict=True):
             totals[STATUS_TABLE[int(code)][0]] += int(count)
         status["status"] = totals
     out = {}
+    named = unresolved_then_named(ds) if "status" in ds else None
+    if named is not None:
+        out["status_unresolved"] = named
     if "predicted_count" in ds:
         for k, index in enumerate(np.ndindex(*grid_shape)):
             sel = dict(zip(grid_dims(ds), index, strict=True))
@@ -209,6 +217,22 @@ def sweep_summary(ds) -> dict:
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),
             "labels": {str(c): n for c, n in table.items()},
             "points": points, **status}
+
+
+def unresolved_then_named(ds) -> dict | None:
+    """How the trajectories whose first pass ended unresolved (status) ended after the
+    second stage: {"named not periodic": n, "left unresolved": m}, or None when the
+    second stage named none (the status line then says all). A recurrent set keeps the
+    first pass's status; its label is the attractor's."""
+    status, label = ds["status"].values.ravel(), ds["label"].values.ravel()
+    first_unresolved = np.isin(status, [c for c, (what, _) in STATUS_TABLE.items()
+                                        if what == "unresolved"])
+    base = np.where(label > 0, label // BASE_WIDTH * BASE_WIDTH, -1)
+    named = first_unresolved & np.isin(base, list(NONPERIODIC_BASES.values()))
+    if not named.any():
+        return None
+    return {"named not periodic": int(named.sum()),
+            "left unresolved": int(np.sum(first_unresolved & (label == UNRESOLVED_LABEL)))}
 
 
 def incomplete_summary(header, done: int) -> dict:
