@@ -38,8 +38,10 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .analysis.attributes import attribute_list
 from .config import ConfigError, Scene, check_writable, parse_scene, result_path
 from .config import load_scene as load_scene_file
+from .config.space import check_disk, check_memory
 from .kinds import KINDS
 
 if TYPE_CHECKING:  # importing the package must not import xarray
@@ -259,6 +261,10 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     with output_lock(target, command_line()):
         if target.exists() and not overwrite:
             raise ConfigError(f"{target}: result exists; pass --overwrite to replace it")
+        if kind.result_bytes is not None:  # a full disk said now, not after the run
+            need = kind.result_bytes(sc)
+            check_memory(need, f"{sc.source}: [analysis]", "reduce what it records")
+            check_disk(target, need)
         ds = run_scene(sc, progress=bar, workers=workers, scheduler=scheduler, echo=echo)
         write_result(ds, target)
     return _handed_out(ds)
@@ -291,7 +297,37 @@ def read_result(path: str | os.PathLike) -> xr.Dataset:
     if "analysis" not in ds.attrs or "scene_text" not in ds.attrs:
         raise ConfigError(f"{path}: not a softimpact result file (an HDF5 file without the "
                           "'analysis' and 'scene_text' attributes softimpact writes)")
+    problem = _result_problem(ds)
+    if problem:
+        raise ConfigError(f"{path}: {problem}")
     return ds
+
+
+def _result_problem(ds: xr.Dataset) -> str | None:
+    """What keeps ``ds``, which carries softimpact's attributes, from being a result the
+    commands can read (None: nothing): its ``analysis`` names no kind, its ``complete``
+    is not 0 or 1, or a complete result lacks a variable every result of its kind holds
+    (a hand-made file, or one another tool took variables from)."""
+    analysis = ds.attrs["analysis"]
+    kind = KINDS.get(analysis) if isinstance(analysis, str) else None
+    if kind is None:
+        return (f"not a softimpact result file (its 'analysis' attribute is {analysis!r}, "
+                f"not one of the kinds {', '.join(KINDS)})")
+    complete = ds.attrs.get("complete", 1)
+    if isinstance(complete, bool | str | bytes) or getattr(complete, "shape", ()) != () \
+            or complete not in (0, 1):
+        return (f"not a softimpact result file (its 'complete' attribute is {complete!r}, "
+                "not 0 or 1)")
+    if complete == 0 and not kind.sweep:  # only a sweep is written in parts
+        return (f"not a softimpact result file (its 'complete' attribute is 0, and a "
+                f"{kind.name} result is written whole)")
+    # a sweep over model parameters also has an axis for each (``grid_parameters``)
+    swept = attribute_list(ds.attrs, "grid_parameters") if kind.sweep else []
+    missing = [name for name in (*kind.variables, *swept) if name not in ds]
+    if complete == 1 and missing:
+        return (f"a {kind.name} result without its variable{'s' * (len(missing) > 1)} "
+                f"{', '.join(missing)} (damaged, or not written by softimpact)")
+    return None
 
 
 def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | None = None, *,

@@ -15,17 +15,22 @@ from pathlib import Path
 import click
 
 from .config import ConfigError, check_writable, load_scene, result_path
+from .report.streams import reader_safe_streams
 
 
 def _user_errors(func):
-    """Turn ConfigError (and unreadable result files) into one line and exit status 2."""
+    """Turn ConfigError (and unreadable result files) into one line and exit status 2;
+    an error after which the run can be resumed (``resumable``, e.g. a Dask cluster
+    lost) says what was kept and the command that resumes (``ctx.meta["softimpact.kept"]``)."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
         except ConfigError as exc:
-            click.echo(f"softimpact: error: {exc}", err=True)
+            kept = click.get_current_context().meta.get("softimpact.kept")
+            more = f"; {kept()}" if getattr(exc, "resumable", False) and kept else ""
+            click.echo(f"softimpact: error: {exc}{more}", err=True)
             sys.exit(2)
 
     return wrapper
@@ -142,6 +147,8 @@ _QUICK_EXIT: list = []
 def main():
     """softimpact: multistability of oscillators coupled through soft impacts."""
     _quick_exit()
+    # a reader that goes away (`| head`) drops the output, never the result
+    click.get_current_context().with_resource(reader_safe_streams())
 
 
 def _scheduler(ctx, param, value):
@@ -409,8 +416,8 @@ def check(scene, sample, seed, as_json, fail_over):
 
 
 @main.command()
-@click.argument("result_a", type=click.Path(dir_okay=False))
-@click.argument("result_b", type=click.Path(dir_okay=False))
+@click.argument("result_a")  # checked when opened: one line naming the file (no usage text)
+@click.argument("result_b")
 @click.option("--max-label-change", type=click.FloatRange(0, 1), default=None, metavar="F",
               help="Exit 1 when more than this share of the labels differ (sweeps).")
 @click.option("--max-share-change", type=click.FloatRange(0, 1), default=None, metavar="F",

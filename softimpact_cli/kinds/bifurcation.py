@@ -151,7 +151,9 @@ KINDS = (AnalysisKind("bifurcation", "each solution followed along d (or any par
                       "destruction points located", read, plan, sections=sections,
                       shrink=shrink, run=run,
                       check=check, info_after=info_lines, compare=compare,
-                      compare_text=compare_text, progress_unit="branches", keys=KEYS,
+                      keys=KEYS,
+                      compare_text=compare_text, progress_unit="branches",
+                      variables=("label", "destroyed_at", "branch_name"),
                       plot=PlotSpec("Section displacements of both bodies (one body: "
                                     "displacement and velocity) against the followed "
                                     "parameter, destruction points marked.")),)

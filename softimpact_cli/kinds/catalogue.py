@@ -87,5 +87,7 @@ KEYS = {
 KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
                       read, plan, run=run, summary=summary, report=report,
                       searches_attractors=True, progress_unit="initial conditions",
-                      keys=KEYS, plot=PlotSpec("Attractors on the phase plane and one panel per "
+                      keys=KEYS,
+                      variables=("attractor_name", "attractor_period", "attractor_points"),
+                      plot=PlotSpec("Attractors on the phase plane and one panel per "
                                     "combination of a catalogue RESULT.")),)

@@ -221,6 +221,7 @@ KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and u
                       "Neimark-Sacker and grazing located", read, plan, sections=sections,
                       shrink=shrink,
                       run=run, summary=summary, report=report,
+                      variables=("parameter", "state", "branch_name"),
                       info_after=lambda ds: report(ds).splitlines(),
                       progress_unit="branches",
                       keys=KEYS,

@@ -141,4 +141,6 @@ KEYS = {
 KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
                       plan, sections=sections, shrink=shrink, run=run, check=check,
                       compare=compare, compare_text=compare_text, progress_unit="phases",
-                      keys=KEYS, plot=PLOT),)
+                      keys=KEYS,
+                      variables=("d_crit", "combination_label"),
+                      plot=PLOT),)

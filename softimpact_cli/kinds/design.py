@@ -157,6 +157,7 @@ KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target surviv
                       "design)", read, plan, sections=sections, run=run, summary=summary,
                       report=report, info_lines=info_lines, info_catalogue=False,
                       outcome_counts=outcome_counts, progress_unit="trajectories",
+                      variables=("score", "share"),
                       options=("workers", "scheduler", "echo"),
                       keys=KEYS,
                       plot=PlotSpec("The (d, phi) plane with the target-only region, the "

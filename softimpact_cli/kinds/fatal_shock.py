@@ -133,5 +133,7 @@ KINDS = (AnalysisKind(
     "fatal_shock", "minimal fatal shock: the smallest kick that sends a solution elsewhere",
     read, plan, sections=sections, run=run, summary=summary, info_lines=info_lines,
     info_catalogue=False, options=("workers",), progress_unit="phases",
-    keys=KEYS, plot=PlotSpec("The fatal shocks of a fatal_shock RESULT against the phase of the "
+    keys=KEYS,
+    variables=("shock_destination",),
+    plot=PlotSpec("The fatal shocks of a fatal_shock RESULT against the phase of the "
                   "orbit: the smallest over directions, the median and the quartiles.")),)

@@ -135,6 +135,7 @@ KINDS = (AnalysisKind(
     "fractality", "basin entropy, uncertainty exponent and Wada test of a plane",
     read, plan, sections=sections, run=run, summary=summary, report=report,
     info_after=info_after, info_catalogue=False, progress_unit="trajectories",
+    variables=("label_share", "n_basins"),
     options=("workers", "scheduler", "echo"),
     keys=KEYS,
     plot=PlotSpec("S_b and S_bb against the box size, the uncertainty fit and the Wada map "

@@ -175,8 +175,8 @@ KINDS = (AnalysisKind("lyapunov", "Lyapunov exponents (Benettin, saltation at sw
                       "a trajectory, of catalogue solutions or along a parameter", read, plan,
                       sections=sections, shrink=shrink, run=run, summary=summary,
                       report=report, info_after=lambda ds: report(ds).splitlines(),
-                      progress_unit="spectra",
                       keys=KEYS,
+                      progress_unit="spectra", variables=("exponent",),
                       plot=PlotSpec("Lyapunov exponents with their standard errors (against "
                                     "the parameter, beside the section states, for a grid "
                                     "run).")),)

@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 from ..config.axes import catalogue_axes, every_axis, parameter_axes
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
-from ..config.sweep import read_catalogue, read_grid, read_initial_conditions
+from ..config.sweep import GRID_AXES, read_catalogue, read_grid, read_initial_conditions
 from . import AnalysisKind, PlotOption, PlotSpec, Sections
 
 
@@ -122,6 +122,10 @@ def map_counts(ds, scene, catalogue):
 SHOW_ERROR = PlotOption("--show-error", "show_error", "Print the result's measured label "
                         "error (its verification line) at the foot.", kind="flag")
 
+# what every complete sweep result holds and info, plot, compare and measure read: the
+# labels, the label tables that name their codes, the grid axes (GRID_AXES)
+SWEEP_VARIABLES = ("label", "label_code", "label_name", *GRID_AXES)
+
 PLOTS = {
     "basins": PlotSpec(
         "Basins of attraction of a plane sweep RESULT, one panel per grid point.",
@@ -157,7 +161,8 @@ KINDS = tuple(
                  check=check, summary=summarise, after_sweep=after,
                  outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
                  needs_attractors=name == "map",  # its counts need d_crit
-                 progress_unit="trajectories", keys=KEYS, plot=PLOTS[name])
+                 keys=KEYS,
+                 progress_unit="trajectories", plot=PLOTS[name], variables=SWEEP_VARIABLES)
     for name, description, summarise, after in (
         ("basins", "the label of every start on a plane, at every [grid] point", summary,
          None),

@@ -19,6 +19,7 @@ from . import AnalysisKind, PlotOption, PlotSpec, Sections
 from .sweeps import (
     KEYS,
     SHOW_ERROR,
+    SWEEP_VARIABLES,
     _reader,
     check,
     compare,
@@ -98,6 +99,7 @@ KINDS = (AnalysisKind(
     _reader("tipping"), plan, sections=sections, shrink=shrink, check=check,
     summary=summary, after_sweep=add_tipping, info_after=info_after,
     outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
+    variables=(*SWEEP_VARIABLES, "tip_probability"),
     progress_unit="trajectories",
     keys=KEYS,
     plot=PlotSpec("The tipping matrix of a tipping RESULT (and, over a plane, the basins "

@@ -187,13 +187,15 @@ def sweep_summary(ds) -> dict:
         point["counts"] = {table[int(v)]: int(c) for v, c in zip(values, counts, strict=True)}
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)
-    status = ds["status"].values
-
-    totals = {"converged": 0, "unresolved": 0, "diverged": 0}
-    for code, count in zip(*np.unique(status, return_counts=True), strict=True):
-        totals[STATUS_TABLE[int(code)][0]] += int(count)
+    status = {}
+    if "status" in ds:  # (a result made by hand may hold labels only: no totals then)
+        totals = {"converged": 0, "unresolved": 0, "diverged": 0}
+        for code, count in zip(*np.unique(ds["status"].values, return_counts=True),
+                               strict=True):
+            totals[STATUS_TABLE[int(code)][0]] += int(count)
+        status["status"] = totals
     out = {}
-    named = unresolved_then_named(ds)
+    named = unresolved_then_named(ds) if "status" in ds else None
     if named is not None:
         out["status_unresolved"] = named
     if "predicted_count" in ds:
@@ -214,7 +216,7 @@ def sweep_summary(ds) -> dict:
             "n": int(ds.attrs.get("n", label.size)),
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),
             "labels": {str(c): n for c, n in table.items()},
-            "points": points, "status": totals}
+            "points": points, **status}
 
 
 def unresolved_then_named(ds) -> dict | None:

@@ -25,7 +25,7 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.attributes import with_lists
-from ..config import ConfigError
+from ..config import ConfigError, space
 from .layout import file_order, memory_order
 from .lock import output_lock
 from .provenance import command_line
@@ -73,7 +73,7 @@ def file_dataset(ds: xr.Dataset) -> tuple[xr.Dataset, dict]:
 
 def _free_bytes(folder: Path) -> int | None:
     try:
-        return shutil.disk_usage(folder).free
+        return space.free_bytes(folder)
     except OSError:
         return None
 

@@ -24,7 +24,13 @@ from ..kinds import get as kind_of
 from ..store import open_result
 from ..store.lock import output_lock
 from ..store.provenance import command_line, history_line, provenance
-from ..store.sweep_store import DamagedHeader, DamagedPart, RunIdentity, SweepStore
+from ..store.sweep_store import (
+    DamagedHeader,
+    DamagedPart,
+    RunIdentity,
+    SweepStore,
+    result_problem,
+)
 from ..systems.base import check_bodies
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
@@ -301,18 +307,25 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     if resume:
         try:
             header, damaged = store.header(), None
-        except DamagedHeader as why:
-            header, damaged = None, str(why)
+        except DamagedHeader as why:  # damaged: what is wrong with the header, if anything
+            header, damaged = None, f"is unreadable ({why})"
         if header is not None and header.attrs.get("scene_sha256") != scene.sha256:
             raise ConfigError(f"{out}: was started from another scene (hash differs); "
                               "resume with the same scene, or --overwrite")
         if header is not None and int(header.attrs.get("complete", 0)) == 1:
+            # the chunks go only once the result they belong to is checked complete
+            problem = result_problem(header, Plan(scene, size).n_total)
+            if problem is None:
+                if not store.parts.exists():
+                    raise ConfigError(f"{out}: is complete already; nothing to resume")
+                store.remove_parts()
+                echo(f"resume: {out} is complete; removed the chunk folder {store.parts} "
+                     "that an interrupted clean-up left behind")
+                return open_result(out)
             if not store.parts.exists():
-                raise ConfigError(f"{out}: is complete already; nothing to resume")
-            store.remove_parts()
-            echo(f"resume: {out} is complete; removed the chunk folder {store.parts} that an "
-                 "interrupted clean-up left behind")
-            return open_result(out)
+                raise ConfigError(f"{out}: says it is complete but {problem}, and no chunk "
+                                  "files are kept; pass --overwrite to compute it again")
+            header, damaged = None, f"says it is complete but {problem}"
         if header is not None:
             size = int(header.attrs["chunk_size"])
             _check_chunk_size(chunk_size, size, out)
@@ -321,12 +334,11 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
             if stored:
                 _check_chunk_size(chunk_size, stored, out)
                 size = stored
-            echo(f"resume: the result header {out} is "
-                 f"{f'unreadable ({damaged})' if damaged else 'missing'}; rewriting it and "
-                 "keeping the chunk files that verify")
+            echo(f"resume: the result header {out} {damaged or 'is missing'}; rewriting it "
+                 "and keeping the chunk files that verify")
         else:
-            echo(f"resume: the result header {out} is unreadable ({damaged}); starting a new "
-                 "run" if damaged else f"nothing to resume at {out}; starting a new run")
+            echo(f"resume: the result header {out} {damaged}; starting a new run" if damaged
+                 else f"nothing to resume at {out}; starting a new run")
             resume = False
     else:
         refuse_existing(out, overwrite)
