@@ -31,8 +31,9 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .config import ConfigError, Scene, check_writable, parse_scene, result_path
-from .config import load_scene as load_scene_file
+from .config import ConfigError, Scene, check_writable, result_path
+from .kinds.scene import load_scene as load_scene_file
+from .kinds.scene import parse_scene
 
 if TYPE_CHECKING:  # importing the package must not import xarray
     import xarray as xr
@@ -80,7 +81,7 @@ def shrink_scene(scene: Scene, quick: bool = False, resolution: int | None = Non
     """The scene at the CLI's ``--quick`` (planes <= 24 x 24, <= 100 samples, <= 6 values
     per swept grid axis, fewer dcrit phases and d steps) and/or ``--resolution N`` (a
     plane's resolution per axis capped at N, grids kept); the stored scene text says so."""
-    from .config import quick as quick_scene
+    from .kinds.scene import quick as quick_scene
 
     if quick:
         scene = quick_scene(scene)

@@ -14,7 +14,8 @@ from pathlib import Path
 
 import click
 
-from .config import ConfigError, check_writable, load_scene, result_path
+from .config import ConfigError, check_writable, result_path
+from .kinds.scene import load_scene
 
 
 def _user_errors(func):
@@ -87,7 +88,8 @@ def _interruptible(func):
 def _warn_outcomes(ds, scene, strict: bool) -> None:
     """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
     --strict, exit with report.outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
-    from .report.outcomes import STRICT_STATUS, outcome_warnings
+    from .kinds.results import outcome_warnings
+    from .report.outcomes import STRICT_STATUS
 
     messages = outcome_warnings(ds, scene.integrator.max_periods)
     for message in messages:
@@ -320,7 +322,7 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
       softimpact design configs/design_duffing.toml --quick -o results/design_quick.h5
     """
     from .api import shrink_scene
-    from .config.design import with_target
+    from .kinds.design_settings import with_target
 
     sc = load_scene(scene)
     if sc.analysis.kind != "design":
@@ -416,7 +418,8 @@ def check(scene, sample, seed, as_json, fail_over):
 @_user_errors
 def compare(result_a, result_b, max_label_change, max_share_change, max_d_change, as_json):
     """Differences of RESULT_B from RESULT_A (same scene layout): labels, shares, d."""
-    from .report.compare import compare_results, format_comparison, limits_exceeded
+    from .kinds.results import compare_results, format_comparison
+    from .report.compare import limits_exceeded
 
     report = compare_results(_open(result_a), _open(result_b), result_a, result_b)
     why = limits_exceeded(report, max_label_change, max_share_change, max_d_change)
@@ -581,7 +584,8 @@ def plot():
 @_user_errors
 def info(result, as_json, compare):
     """What RESULT holds: scene, status, period, contacts, wall time."""
-    from .report.info import compare_shares, describe, incomplete_summary
+    from .kinds.results import describe
+    from .report.info import compare_shares, incomplete_summary
     from .store.sweep_store import SweepStore
 
     ds = _open(result)
@@ -613,7 +617,7 @@ def info(result, as_json, compare):
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
-    from .report.info_text import format_summary
+    from .kinds.results import format_summary
 
     click.echo(format_summary(summary, ds))
 

@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.config import load_scene, quick
+from softimpact_cli.kinds.scene import load_scene, quick
 
 ROOT = Path(__file__).parents[1]
 README = (ROOT / "README.md").read_text()

@@ -133,29 +133,10 @@ def require_attractors(catalogue: Catalogue, kind: str, source: str) -> None:
                       f"unresolved); {kind} needs at least one")
 
 
-def scene_catalogue(scene) -> Catalogue:
-    """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...);
-    one line (ConfigError) and nothing further computed when it finds no attractor."""
-    search = scene_body_attractors(scene)
-    cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, *search)
-    require_attractors(cat, scene.analysis.kind, str(scene.source))
-    return cat
-
-
 def catalogue_states(scene) -> np.ndarray:
     """The initial conditions of a scene's [catalogue] search, (n, 2)."""
     c = scene.catalogue
     return sample_states(c.box, c.grid, c.random, c.seed)
-
-
-def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:
-    """The one-body search every scene's catalogue starts from, over its [catalogue]
-    section's initial conditions (``states``, when the caller drew them already) at
-    t0 = 0, through the catalogue cache."""
-    c = scene.catalogue
-    states = catalogue_states(scene) if states is None else states
-    problem = body_problem(scene.system, scene.values, scene.integrator)
-    return cached_body_search(problem, states, 0.0, c.match_tol, progress)
 
 
 def body_problem(system: System, values: dict, integrator: IntegratorSettings) -> Problem:
@@ -343,16 +324,6 @@ def label_orbit(catalogue: Catalogue, orbit: np.ndarray, impacting: bool,
                  b.number)
 
 
-def build_catalogue(system: System, values: dict, integrator: IntegratorSettings,
-                    states: np.ndarray, t0: float = 0.0, match_tol: float = 1e-3,
-                    progress=None) -> Catalogue:
-    """The full catalogue: left attractors, and for a pair the right ones and combinations."""
-    check_bodies(system.bodies, "build_catalogue (left and right attractors)")
-    problem = body_problem(system, values, integrator)
-    search = cached_body_search(problem, states, t0, match_tol, progress)
-    return extend_catalogue(system, values, integrator, *search)
-
-
 def extend_catalogue(system: System, values: dict, integrator: IntegratorSettings,
                      left: list, counts: dict, n_states: int, source: str = "computed"
                      ) -> Catalogue:
@@ -384,24 +355,6 @@ class BodySearch(NamedTuple):
     counts: dict[str, int]
     n_states: int
     source: str
-
-
-def cached_body_search(problem: Problem, states: np.ndarray, t0: float = 0.0,
-                       match_tol: float = 1e-3, progress=None) -> BodySearch:
-    """:func:`body_catalogue` through the catalogue cache (``store.catalogue_cache``):
-    read back bit for bit when an entry of :func:`search_key_material` verifies, else
-    searched and stored. ``progress`` gets every sample at once on a hit."""
-    from ..store import catalogue_cache
-
-    def search() -> dict[str, np.ndarray]:
-        left, counts = body_catalogue(problem, states, t0, match_tol, progress)
-        return search_arrays(BodySearch(left, counts, len(states), "computed"))
-
-    material = search_key_material(problem, states, t0, match_tol)
-    arrays, source = catalogue_cache.cached(material, search)
-    if progress is not None and source.startswith("cache"):
-        progress(len(states))
-    return search_from_arrays(arrays, source)
 
 
 def search_key_material(problem: Problem, states: np.ndarray, t0: float, match_tol: float

@@ -16,11 +16,10 @@ from .critical_distance import critical_distances
 from .labels import parse_label
 
 
-def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list) -> xr.Dataset:
-    """Add predicted_count, found_count, found_nonimpacting to a sweep result."""
-    from ..report.info import grid_dims
-
-    dims = grid_dims(ds)
+def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list,
+                   dims: tuple[str, ...]) -> xr.Dataset:
+    """Add predicted_count, found_count, found_nonimpacting to a sweep result whose grid
+    points span ``dims`` (``sweep.result.grid_dims``)."""
     names = [str(n) for n in ds["label_name"].values]
     codes = [int(c) for c in ds["label_code"].values]
     kinds = [parse_label(n).kind for n in names]

@@ -73,15 +73,13 @@ def cache_folder() -> Path | None:
 def compile_notice(scene=None) -> str | None:
     """The notice for a run of ``scene`` (a loaded scene, or None for the default pair),
     or None when every kernel it needs is cached."""
-    from ..kinds import get as kind_of
-
     if scene is None:
         model, bodies, method, catalogue = "duffing", 2, "auto", True
     else:
         model, bodies = scene.system.model, scene.system.bodies
         method = scene.integrator.resolved_method
-        catalogue = (scene.catalogue is not None
-                     or kind_of(scene.analysis.kind).searches_attractors)
+        catalogue = (scene.catalogue is not None  # a catalogue kind searches without one
+                     or getattr(scene.analysis, "searches_attractors", False))
     if not missing_kernels(model, bodies, method, catalogue):
         return None
     return NOTICE.format(minutes=COLD_MINUTES, folder=cache_folder())

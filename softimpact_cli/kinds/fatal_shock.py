@@ -8,10 +8,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..analysis.engine import Problem, record_trajectory
+from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
 from ..config.limits import MAX_SEED
-from ..config.reader import positive
-from ..config.sweep import read_catalogue
-from . import AnalysisKind, PlotSpec, Sections
+from ..config.reader import ConfigError, positive
+from ..config.sweep import GRID_AXES, read_catalogue
+from ..report.fatal_shock import fatal_shock_lines, fatal_shock_summary
+from ..store.catalogues import scene_catalogue
+from ..sweep import label_states
+from .base import AnalysisKind, PlotSpec, Sections
 
 
 @dataclass(frozen=True)
@@ -59,8 +64,6 @@ def sections(analysis, ctx) -> Sections:
 
 def solution_orbit(scene, catalogue) -> np.ndarray:
     """The section points (t = 0 mod T) of the scene's solution in its catalogue."""
-    from ..config.reader import ConfigError
-
     found = catalogue.orbits
     name = scene.analysis.solution
     if name not in found:
@@ -70,12 +73,6 @@ def solution_orbit(scene, catalogue) -> np.ndarray:
 
 
 def run(scene, progress=None, workers=None, **_):
-    from ..analysis.catalogue import scene_catalogue
-    from ..analysis.engine import Problem, record_trajectory
-    from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
-    from ..config.sweep import GRID_AXES
-    from ..sweep import label_states
-
     a = scene.analysis
     catalogue = scene_catalogue(scene)
     start = solution_orbit(scene, catalogue)[0]
@@ -105,14 +102,10 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 
 def summary(ds) -> dict:
-    from ..report.fatal_shock import fatal_shock_summary
-
     return fatal_shock_summary(ds)
 
 
 def info_lines(ds) -> list[str]:
-    from ..report.fatal_shock import fatal_shock_lines
-
     return fatal_shock_lines(ds)
 
 

@@ -11,10 +11,18 @@ t = 0 mod T labelled at the second point).
 
 from __future__ import annotations
 
-import numpy as np
+from dataclasses import dataclass
 
+import numpy as np
+import xarray as xr
+
+from ..analysis.tipping import attractor_destinations, tipping_probabilities
 from ..config.reader import ConfigError
-from . import AnalysisKind, PlotOption, PlotSpec, Sections
+from ..report.tipping import tipping_lines, tipping_summary
+from ..sweep import label_states
+from ..sweep.plan import SweepSettings
+from ..sweep.result import grid_dims
+from .base import AnalysisKind, PlotOption, PlotSpec, Sections
 from .sweeps import (
     SHOW_ERROR,
     _reader,
@@ -29,6 +37,16 @@ from .sweeps import sections as sweep_sections
 from .sweeps import summary as sweep_summary
 
 
+@dataclass(frozen=True)
+class TippingAnalysis(SweepSettings):
+    """[analysis] kind = "tipping": a sweep over two grid points, then the tipping matrix
+    and where each solution goes (``add_tipping``)."""
+
+    @property
+    def after_sweep(self):
+        return add_tipping
+
+
 def sections(analysis, ctx) -> Sections:
     read = sweep_sections(analysis, ctx)
     if read.grid.size != 2:
@@ -40,12 +58,6 @@ def sections(analysis, ctx) -> Sections:
 
 def add_tipping(ds, scene, catalogue):
     """The sweep's extra variables: the tipping matrix and the solutions' destinations."""
-    import xarray as xr
-
-    from ..analysis.tipping import attractor_destinations, tipping_probabilities
-    from ..report.info import grid_dims
-    from ..sweep import label_states
-
     dims = grid_dims(ds)
     ic_dims = str(ds.attrs["ic_dims"]).split()
     label = ds["label"].transpose(*dims, *ic_dims).values.reshape(2, -1)
@@ -80,21 +92,17 @@ def _point_text(scene, index: int) -> str:
 
 
 def summary(ds) -> dict:
-    from ..report.tipping import tipping_summary
-
     return {**sweep_summary(ds), "tipping": tipping_summary(ds)}
 
 
 def info_after(ds) -> list[str]:
-    from ..report.tipping import tipping_lines
-
     return tipping_lines(ds)
 
 
 KINDS = (AnalysisKind(
     "tipping", "tipping probabilities: where basins and solutions go between two points",
-    _reader("tipping"), plan, sections=sections, shrink=shrink, check=check,
-    summary=summary, after_sweep=add_tipping, info_after=info_after,
+    _reader("tipping", TippingAnalysis), plan, sections=sections, shrink=shrink, check=check,
+    summary=summary, info_after=info_after,
     outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
     progress_unit="trajectories",
     plot=PlotSpec("The tipping matrix of a tipping RESULT (and, over a plane, the basins "

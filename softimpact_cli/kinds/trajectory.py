@@ -4,8 +4,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..analysis.engine import Problem
+from ..analysis.trajectory import trajectory_dataset
 from ..config.limits import MAX_TRAJECTORY_SAMPLES
-from . import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
+from .base import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
 
 
 @dataclass(frozen=True)
@@ -37,9 +39,6 @@ def read(sec, ctx) -> TrajectoryAnalysis:
 
 
 def run(scene, progress=None, **_):
-    from ..analysis.engine import Problem
-    from ..analysis.trajectory import trajectory_dataset
-
     a = scene.analysis
     return trajectory_dataset(Problem(scene.system, scene.values, scene.integrator), a.state,
                               a.t0, a.periods, a.samples_per_period)

@@ -7,7 +7,8 @@ from math import ceil
 import numpy as np
 
 from ..analysis.labels import NONPERIODIC_KINDS, parse_label
-from ..report.info import GRID_AXES, grid_dims, grid_point
+from ..config import GRID_AXES
+from ..sweep.result import grid_dims, grid_point
 from . import (
     multiple_text,
     panel_letter,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..report.info import GRID_AXES
+from ..config import GRID_AXES
 from . import panel_letter, parameter_text, pi_ticks, place_panels, root_figure, start_text
 from .basins_figure import SYMBOLS
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.labels import latex_of, parse_label
-from ..report.info import grid_dims
+from ..sweep.result import grid_dims
 from . import parameter_text, pi_ticks, place_panels, root_figure, start_text
 from .basins_figure import SYMBOLS
 from .palette import IMPACTING, colour_of, solution_order

@@ -6,8 +6,11 @@ import math
 
 import numpy as np
 
-from ..kernels.codes import CLASSIFIED_BY
-from ..kinds import KINDS
+from ..analysis.stability import basin_stability
+from ..config import GRID_AXES
+from ..kernels.codes import CLASSIFIED_BY, STATUS_TABLE
+from ..sweep.result import grid_dims, grid_point  # noqa: F401  (named here too)
+from .nonperiodic import nonperiodic_summary
 from .verification import verification_summary
 
 SUMMARY_KEYS = (
@@ -36,8 +39,9 @@ def _first_method(ds) -> str:
     return "exact flow" if exact else "explicit"
 
 
-def describe(ds) -> dict:
-    """Summary of a result dataset: analysis, outcome, timings, provenance."""
+def describe(ds, kind=None) -> dict:
+    """Summary of a result dataset: analysis, outcome, timings, provenance, and the part
+    of ``kind`` (its AnalysisKind: ``kinds.results.describe`` passes the result's own)."""
     out = {k: _plain(ds.attrs[k]) for k in SUMMARY_KEYS if k in ds.attrs}
     out.update({k: _plain(v) for k, v in ds.attrs.items() if k.startswith("check_")})
     first = _first_method(ds)
@@ -60,11 +64,9 @@ def describe(ds) -> dict:
             for i, name in enumerate(ds["branch_name"].values)}
     if "d_crit" in ds:
         out["d_crit"] = dcrit_summary(ds)
-    kind = KINDS.get(str(ds.attrs.get("analysis")))
     if kind is not None and kind.summary is not None:
         out.update(kind.summary(ds))
     if "nonperiodic_code" in ds:  # the second stage's attractors (report/nonperiodic.py)
-        from .nonperiodic import nonperiodic_summary
 
         out["nonperiodic"] = nonperiodic_summary(ds)
     verification = verification_summary(ds.attrs)
@@ -133,26 +135,6 @@ def format_catalogue(ds) -> str:
     return "\n".join(lines)
 
 
-GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
-
-
-def grid_dims(ds) -> tuple[str, ...]:
-    """The dims a sweep's grid points span: GRID_AXES, or ("panel",)."""
-    return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
-
-
-def grid_point(ds, index: tuple[int, ...]) -> dict:
-    """Parameter values of the grid point at ``index`` (over grid_dims); t0 is "random"
-    when each sample has its own start time."""
-    dims = grid_dims(ds)
-    sel = dict(zip(dims, index, strict=True))
-    point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
-             for a in GRID_AXES}
-    if ds.attrs.get("t0_mode") == "random":
-        point["t0"] = "random"
-    return point
-
-
 def sweep_summary(ds) -> dict:
     """Label table, per-grid-point counts and fractions, and status totals of a sweep."""
     codes = [int(c) for c in ds["label_code"].values]
@@ -171,7 +153,6 @@ def sweep_summary(ds) -> dict:
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)
     status = ds["status"].values
-    from ..kernels.codes import STATUS_TABLE
 
     totals = {"converged": 0, "unresolved": 0, "diverged": 0}
     for code, count in zip(*np.unique(status, return_counts=True), strict=True):
@@ -211,8 +192,6 @@ def incomplete_summary(header, done: int) -> dict:
 
 def stability_summary(ds) -> list[dict]:
     """Per grid point: share and 95% Wilson interval of every group."""
-    from ..analysis.stability import basin_stability
-
     bs = basin_stability(ds)
     dims = grid_dims(ds)
     share = bs["share"].transpose(*dims, "group").values

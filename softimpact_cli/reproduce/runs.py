@@ -16,7 +16,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..config import Scene, parse_scene, quick
+from ..config import Scene
+from ..kinds.scene import parse_scene, quick
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs"

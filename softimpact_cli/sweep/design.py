@@ -20,10 +20,10 @@ from ..analysis.catalogue import (
     catalogue_dataset,
     catalogue_states,
     extend_catalogue,
-    scene_body_attractors,
 )
 from ..analysis.design import AXES, NoRegion, design
 from ..config import ConfigError, Grid, Scene
+from ..store.catalogues import scene_body_attractors
 from ..store.provenance import provenance
 from .chunks import CELL_BLOCK
 from .executors import make_executor

@@ -130,3 +130,23 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     if ic.kind == "plane":
         attrs["plane_fixed"] = ", ".join(f"{k}={v}" for k, v in (ic.fixed or {}).items())
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+# ---------------------------------------------------------------- reading the schema
+
+
+def grid_dims(ds) -> tuple[str, ...]:
+    """The dims a sweep's grid points span: GRID_AXES, or ("panel",)."""
+    return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+
+
+def grid_point(ds, index: tuple[int, ...]) -> dict:
+    """Parameter values of the grid point at ``index`` (over grid_dims); t0 is "random"
+    when each sample has its own start time."""
+    dims = grid_dims(ds)
+    sel = dict(zip(dims, index, strict=True))
+    point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
+             for a in GRID_AXES}
+    if ds.attrs.get("t0_mode") == "random":
+        point["t0"] = "random"
+    return point

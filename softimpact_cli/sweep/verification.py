@@ -2,7 +2,7 @@
 disagreement, and tighten the whole sweep when the bound is too high.
 
 After a sweep (basins, stability, map), ``n = [verification] sample_size(total)`` random
-trajectories are rerun at ``kinds.check.tightened`` settings (rtol and atol / 100,
+trajectories are rerun at ``sweep.check.tightened`` settings (rtol and atol / 100,
 convergence_tol / 10, twice the periods, 4x the RK4 steps, capture off, each in its own
 chunk so recurrence cells are off) and compared with the labels the sweep stored. The
 share that disagrees gets a 95% Wilson interval ``[low, high]``; with ``threshold`` from
@@ -38,7 +38,16 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..config import IntegratorSettings, Scene
+from ..analysis.stability import wilson_interval
+from ..config import IntegratorSettings, Scene, VerificationSettings
+from ..store import add_attributes, open_result, update_attributes, write_result
+from ..store.lock import output_lock
+from ..store.provenance import command_line
+from ..store.sweep_store import DamagedHeader, SweepStore
+from .check import check_sweep, tightened
+from .executors import make_executor
+from .pilot import choose_tolerance, scene_as_run
+from .runner import refuse_existing, run_sweep
 
 VERIFIED, INCONCLUSIVE, TIGHTENED, OVER = "verified", "inconclusive", "tightened", \
     "over threshold"
@@ -103,8 +112,6 @@ class Attempt:
         """What the ladder should tighten first: "tolerance" when the run's settings
         without capture and cells already disagree beyond the threshold, else "shortcuts"
         (capture and recurrence cells)."""
-        from ..analysis.stability import wilson_interval
-
         if not self.alone_disagreements:
             return "shortcuts"
         (_,), (high,) = wilson_interval(np.array([self.alone_disagreements]), self.sample)
@@ -125,9 +132,6 @@ def check_result(scene: Scene, ds: xr.Dataset, sample: int, seed: int, executor=
                  ) -> Attempt:
     """Rerun ``sample`` random trajectories of the sweep result ``ds`` (of ``scene``) at
     tightened settings and compare with its stored labels."""
-    from ..analysis.stability import wilson_interval
-    from ..kinds.check import check_sweep, tightened
-
     report = check_sweep(scene, sample, seed, result=ds, executor=executor)
     (low,), (high,) = wilson_interval(np.array([report["changed"]]), max(report["sample"], 1))
     return Attempt(settings=settings_text(scene.integrator),
@@ -185,8 +189,6 @@ def verify_sweep(scene: Scene, ds: xr.Dataset, redo: Callable[[Scene, int], xr.D
     ``sample`` overrides the [verification] sample size (``--check N``). Returns the
     final dataset with the ``verify_*`` attributes.
     """
-    from ..config import VerificationSettings
-
     settings = scene.verification or VerificationSettings()  # a Scene built by hand
     total = int(ds.attrs["n"])
     n = min(sample if sample is not None else settings.sample_size(total), total)
@@ -221,8 +223,6 @@ def stalled(attempts: list[Attempt]) -> bool:
 
 
 def _reference(scene: Scene) -> IntegratorSettings:
-    from ..kinds.check import tightened
-
     return tightened(scene.integrator)
 
 
@@ -300,16 +300,12 @@ def redo_path(out: Path, rung: int) -> Path:
 
 def remove_redo_files(out: Path) -> None:
     """The redone sweeps beside ``out`` and their chunk folders."""
-    from ..store.sweep_store import SweepStore
-
     for rung in range(1, MAX_RUNGS + 1):
         SweepStore(redo_path(out, rung)).remove()
 
 
 def pending(out: Path) -> bool:
     """Whether ``out`` is a complete sweep whose verification was interrupted."""
-    from ..store.sweep_store import DamagedHeader, SweepStore
-
     try:
         header = SweepStore(out).header()
     except DamagedHeader:
@@ -324,19 +320,10 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
     """Run (or resume) the sweep ``scene`` into ``out`` and verify it (``verify`` False, or
     [verification] enabled = false: recorded as not verified). ``run_options`` go to
     ``run_sweep`` (workers, scheduler, overwrite, chunk_size, progress)."""
-    from ..store import add_attributes, update_attributes, write_result
-    from ..store.lock import output_lock
-    from ..store.provenance import command_line
-    from .executors import make_executor
-    from .pilot import choose_tolerance, scene_as_run
-    from .runner import refuse_existing, run_sweep
-
     with output_lock(out, command_line()):
         enabled = verify and (scene.verification is None or scene.verification.enabled)
         executor = make_executor(run_options.get("workers"), run_options.get("scheduler"))
         if resume and pending(out):
-            from ..store import open_result
-
             echo(f"resume: {out} is complete; finishing its verification")
             ds = open_result(out)
             scene = scene_as_run(scene, ds.attrs)
@@ -359,7 +346,6 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
 
         def redo(tighter: Scene, rung: int) -> xr.Dataset:
             path = redo_path(out, rung)
-            from ..store.sweep_store import SweepStore
 
             return run_sweep(tighter, path, resume=resume and SweepStore(path).exists(),
                              overwrite=True, echo=echo, **options)

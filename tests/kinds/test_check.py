@@ -7,8 +7,10 @@ import sys
 import numpy as np
 import xarray as xr
 
-from softimpact_cli.config import IntegratorSettings, parse_scene
-from softimpact_cli.kinds.check import check_scene, tightened
+from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.kinds.check import check_scene
+from softimpact_cli.kinds.scene import parse_scene
+from softimpact_cli.sweep.check import tightened
 
 SWEEP = """
 [system]

@@ -16,7 +16,7 @@ from . import _names, check
 
 
 def _defaults(model: str, study: dict) -> Measure:
-    from ...config import parse_scene
+    from ...kinds.scene import parse_scene
 
     scene = parse_scene(f'[system]\nmodel = "{model}"\n[analysis]\nkind = "dcrit"\n')
     values = {"M": 1.0, **scene.values}  # mass 1: the models are written for M = 1
@@ -40,7 +40,7 @@ def bilinear_parameters(st, runs):
 
 @check("rk4_available")
 def rk4_available(st, runs):
-    from ...config import parse_scene
+    from ...kinds.scene import parse_scene
 
     scene = parse_scene('[system]\nmodel = "duffing"\n[analysis]\nkind = "dcrit"\n'
                         '[integrator]\nmethod = "rk4"\nsteps_per_period = 1440\n'
