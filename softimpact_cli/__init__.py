@@ -10,6 +10,7 @@ first use.
 __version__ = "0.1.0"
 
 import gc as _gc  # noqa: E402
+import importlib  # noqa: E402
 import os as _os  # noqa: E402
 import sys as _sys  # noqa: E402
 
@@ -22,29 +23,27 @@ COMMAND_GC_THRESHOLD = (50_000, 20, 20)
 if _sys.argv and _os.path.basename(_sys.argv[0]) == "softimpact":
     _gc.set_threshold(*COMMAND_GC_THRESHOLD)
 
-# The package ``sweep`` first: importing a submodule binds it as an attribute of this
-# package, which would replace the function of the same name bound below if it came
-# later. So ``softimpact_cli.sweep`` is the function; ``from softimpact_cli.sweep import
-# run_sweep`` works as before.
+# The API's functions are imported on first use (they import xarray, the store and the
+# analyses). ``softimpact_cli.sweep`` is the function ``api.sweep``: the subpackage of the
+# same name, bound here by Python when it is first imported, is unbound again so that the
+# name goes to ``__getattr__``; ``from softimpact_cli.sweep import run_sweep`` works as
+# before (the subpackage stays in sys.modules).
 from . import sweep as _sweep_package  # noqa: E402, F401
-from .api import (  # noqa: E402
-    ConfigError,
-    load_scene,
-    measure,
-    open_result,
-    run,
-    shrink_scene,
-    sweep,
-)
+from .config import ConfigError  # noqa: E402
 
+del sweep  # noqa: F821  (the subpackage's binding; see above)
+
+_API = ("load_scene", "measure", "open_result", "run", "shrink_scene", "sweep")
 __all__ = ["ConfigError", "load_scene", "measure", "open_result", "plot", "run", "shrink_scene",
            "sweep"]
 
 
 def __getattr__(name: str):
-    # the figures import matplotlib: only when a notebook first asks for them
+    # the API on first use; the figures (matplotlib) only when a notebook asks for them
+    if name in _API:
+        api = importlib.import_module(".api", __name__)
+        globals().update({n: getattr(api, n) for n in _API})
+        return globals()[name]
     if name == "plot":
-        import importlib
-
         return importlib.import_module(".plot", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

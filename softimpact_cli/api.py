@@ -26,17 +26,33 @@ the plan and catalogue lines the CLI shows.
 from __future__ import annotations
 
 import os
+import time
 import warnings
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
+import xarray as xr
+
+from . import __version__
+from .analysis.fractality import fractality, plane_problem
 from .config import ConfigError, Scene, check_writable, result_path
+from .config.toml_text import toml_text
+from .kinds import get as kind_of
+from .kinds import sweep_kinds
+from .kinds.run import run_scene
 from .kinds.scene import load_scene as load_scene_file
 from .kinds.scene import parse_scene
-
-if TYPE_CHECKING:  # importing the package must not import xarray
-    import xarray as xr
+from .kinds.scene import quick as quick_scene
+from .store import open_result as read_result
+from .store import write_result
+from .store.lock import output_lock
+from .store.provenance import command_line, history_line, iso_time
+from .store.xarray_dask import install
+from .sweep import sweep_in_memory
+from .sweep.executors import make_executor
+from .sweep.pilot import choose_tolerance
+from .sweep.verification import disabled_status, sweep_verified, verify_sweep
 
 __all__ = ["ConfigError", "load_scene", "measure", "open_result", "run", "shrink_scene",
            "sweep"]
@@ -65,8 +81,6 @@ def load_scene(scene: SceneLike, source: str | None = None) -> Scene:
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, Mapping):
-        from .config.toml_text import toml_text
-
         name = source or "<dict>"
         return parse_scene(toml_text(scene, name), name)
     if isinstance(scene, str) and ("\n" in scene or "=" in scene or not scene.strip()):
@@ -81,8 +95,6 @@ def shrink_scene(scene: Scene, quick: bool = False, resolution: int | None = Non
     """The scene at the CLI's ``--quick`` (planes <= 24 x 24, <= 100 samples, <= 6 values
     per swept grid axis, fewer dcrit phases and d steps) and/or ``--resolution N`` (a
     plane's resolution per axis capped at N, grids kept); the stored scene text says so."""
-    from .kinds.scene import quick as quick_scene
-
     if quick:
         scene = quick_scene(scene)
     if resolution:
@@ -138,9 +150,6 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     ``verify_sample``: the number rerun (default from [verification]). ``verify=False``
     records "not verified (disabled by --no-verify)".
     """
-    from .kinds import get as kind_of
-    from .store.xarray_dask import install
-
     install()  # no dask imported for datasets that hold none (store/xarray_dask.py)
     _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
@@ -149,7 +158,6 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     if kind.sweep:
         return _sweep_in_memory(sc, workers, scheduler, chunk_size, echo or _silent, bar,
                                 verify, verify_sample)
-    from .kinds.run import run_scene
 
     return run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
                      echo=echo or _silent)
@@ -165,11 +173,6 @@ def _check_verify_sample(verify_sample) -> None:
 def _sweep_in_memory(sc: Scene, workers, scheduler, chunk_size, echo, bar, verify: bool,
                      verify_sample: int | None) -> xr.Dataset:
     """A sweep kind run in memory, then verified (or recorded as not verified)."""
-    from .sweep import sweep_in_memory
-    from .sweep.executors import make_executor
-    from .sweep.pilot import choose_tolerance
-    from .sweep.verification import disabled_status, verify_sweep
-
     if not (verify and (sc.verification is None or sc.verification.enabled)):
         ds = sweep_in_memory(sc, workers, scheduler, chunk_size, echo, bar)
         ds.attrs["verify_status"] = disabled_status(
@@ -201,10 +204,6 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     :func:`run`); a redo at tighter settings is written beside ``out`` and replaces it
     when done, and ``resume=True`` also finishes an interrupted verification.
     """
-    from .kinds import SWEEP_KINDS
-    from .kinds import get as kind_of
-    from .store.xarray_dask import install
-
     install()  # no dask imported for datasets that hold none (store/xarray_dask.py)
     _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
@@ -215,18 +214,12 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     bar = _progress(progress, kind.progress_unit)
     echo = echo or _silent
     if kind.sweep:
-        from .sweep.verification import sweep_verified
-
         return sweep_verified(sc, target, verify=verify, sample=verify_sample, resume=resume,
                               echo=echo, workers=workers, scheduler=scheduler,
                               overwrite=overwrite, chunk_size=chunk_size, progress=bar)
     if resume:
         raise ConfigError(f"{sc.source}: resume is for sweeps (kinds "
-                          f"{', '.join(SWEEP_KINDS)}); a {kind.name} reruns whole")
-    from .kinds.run import run_scene
-    from .store import write_result
-    from .store.lock import output_lock
-    from .store.provenance import command_line
+                          f"{', '.join(sweep_kinds())}); a {kind.name} reruns whole")
 
     # held for the whole run: a second run on the same output is refused at once, not
     # after it has computed everything
@@ -241,8 +234,6 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
 def open_result(path: str | os.PathLike) -> xr.Dataset:
     """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed).
     ConfigError when it is missing, a directory, or not a softimpact result."""
-    from .store import open_result as read
-
     p = Path(path)
     if p.is_dir():
         raise ConfigError(f"{path}: is a directory, not a result file")
@@ -251,7 +242,7 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
     try:
         with warnings.catch_warnings():  # a foreign HDF5 file: the reader's warnings are noise
             warnings.simplefilter("ignore")
-            ds = read(p)
+            ds = read_result(p)
     except Exception as exc:  # any reader failure is the file's fault, said in one line
         raise ConfigError(f"{path}: not a softimpact result file ({exc.__class__.__name__})"
                           ) from None
@@ -276,10 +267,6 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
     file) for anything else than a complete basins result over a plane, or sizes that do
     not fit it; nothing is written then.
     """
-    import xarray as xr
-
-    from .analysis.fractality import fractality, plane_problem
-
     name = "result" if isinstance(result, xr.Dataset) else os.fspath(result)
     ds = result if isinstance(result, xr.Dataset) else open_result(result)
     problem = plane_problem(ds)
@@ -293,10 +280,6 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
         measured = fractality(ds, box_sizes, radii, wada_radius, wada_tol)
     except ValueError as exc:
         raise ConfigError(f"{name}: {exc}") from None
-    import time
-
-    from . import __version__
-    from .store.provenance import history_line, iso_time
 
     measured.attrs.update({"source_result": name, "softimpact_version": __version__,
                            "measured": iso_time(time.time()),
@@ -304,7 +287,5 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
     if "scene_text" not in measured.attrs:  # a dataset built by hand
         measured.attrs["scene_text"] = ""
     if out is not None:
-        from .store import write_result
-
         write_result(measured, out)
     return measured

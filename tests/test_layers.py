@@ -21,7 +21,8 @@ import softimpact_cli
 ROOT = Path(softimpact_cli.__file__).parent
 
 # bottom to top; a package imports only packages of a lower rank (or its own package).
-# "(root)" is the modules at the top of the package: api.py, cli.py, __init__.py
+# "(root)" is the modules at the top of the package: api.py, cli.py, __init__.py (the
+# command line runs the reproduction, hence reproduce below it)
 LAYERS = (
     ("kernels",),
     ("systems",),
@@ -32,7 +33,8 @@ LAYERS = (
     ("report",),
     ("plot",),
     ("kinds",),
-    ("reproduce", "(root)"),
+    ("reproduce",),
+    ("(root)",),
 )
 RANK = {package: rank for rank, layer in enumerate(LAYERS) for package in layer}
 MAX_LOCAL_IMPORTS = 30

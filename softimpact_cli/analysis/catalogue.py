@@ -24,6 +24,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..config import ConfigError, IntegratorSettings
+from ..kernels import numba_cache
 from ..kernels.codes import CONVERGED, OK, outcome
 from ..systems import System, get_system
 from ..systems.base import check_bodies
@@ -364,8 +365,6 @@ def search_key_material(problem: Problem, states: np.ndarray, t0: float, match_t
     (n, 2), t0, match_tol, and the sources and library versions that compute it."""
     import numba
 
-    from ..kernels.numba_cache import source_hash
-
     states = np.ascontiguousarray(states, dtype=np.float64)
     return {
         "search": "one-body attractors", "model": problem.system.model,
@@ -376,7 +375,7 @@ def search_key_material(problem: Problem, states: np.ndarray, t0: float, match_t
         "states": {"shape": list(states.shape),
                    "sha256": hashlib.sha256(states.tobytes()).hexdigest()},
         "t0": float(t0), "match_tol": float(match_tol),
-        "sources": source_hash(folders=SEARCH_SOURCES),
+        "sources": numba_cache.source_hash(folders=SEARCH_SOURCES),
         "numpy": np.__version__, "numba": numba.__version__,
     }
 

@@ -22,6 +22,7 @@ from ..kernels import ALIASES, METHOD_MODULES
 from ..kernels.cells import MAX_CELL_DIM
 from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
 from ..systems.base import SUPPORTED_BODIES
+from ..systems.piecewise_linear import exact_refusal
 from .limits import (
     MAX_NESTING,
     check_nesting,
@@ -289,7 +290,6 @@ def _default_method(doc: dict, system, values, integrator: IntegratorSettings
         return integrator
     if not system.piecewise_linear:
         return integrator
-    from ..systems.piecewise_linear import exact_refusal
 
     if exact_refusal(system, system.pack(values)) is not None:
         return integrator
@@ -298,8 +298,6 @@ def _default_method(doc: dict, system, values, integrator: IntegratorSettings
 
 def _check_exact(source: str, system, values, integrator: IntegratorSettings) -> None:
     """Method 'exact' integrates piecewise-linear systems only, switches located."""
-    from ..systems.piecewise_linear import exact_refusal
-
     if not integrator.locate_switches:
         raise ConfigError(f"{source}: [integrator] method = \"exact\" locates every switch; "
                           "locate_switches = false is for rk4 (the study's plain scheme)")

@@ -9,7 +9,7 @@ import numpy as np
 from ..analysis.labels import NONPERIODIC_KINDS, parse_label
 from ..config import GRID_AXES
 from ..sweep.result import grid_dims, grid_point
-from . import (
+from .common import (
     multiple_text,
     panel_letter,
     parameter_text,

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.labels import latex_of
-from . import panel_letter, parameter_text, place_panels, root_figure, start_text
+from .common import panel_letter, parameter_text, place_panels, root_figure, start_text
 from .palette import IMPACTING, SPECIAL, colour_of, solution_order
 
 TRANSIENT = SPECIAL["unresolved"]

@@ -7,7 +7,7 @@ from math import ceil
 import numpy as np
 
 from ..analysis.labels import latex_of
-from . import (
+from .common import (
     is_figure,
     new_figure,
     panel_letter,

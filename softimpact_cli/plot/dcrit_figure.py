@@ -8,7 +8,7 @@ from collections import deque
 import numpy as np
 
 from ..analysis.labels import latex_of
-from . import panel_letter, parameter_text, phase_text, pi_ticks, place_panels, root_figure
+from .common import panel_letter, parameter_text, phase_text, pi_ticks, place_panels, root_figure
 from .palette import colour_of, solution_order
 
 

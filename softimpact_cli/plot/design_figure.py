@@ -9,7 +9,7 @@ import numpy as np
 
 from ..analysis.labels import latex_of
 from ..report.info import design_summary
-from . import (
+from .common import (
     panel_letter,
     parameter_text,
     phase_text,

@@ -7,8 +7,8 @@ import numpy as np
 
 from ..analysis.labels import latex_of, parse_label
 from ..sweep.result import grid_dims
-from . import parameter_text, pi_ticks, place_panels, root_figure, start_text
 from .basins_figure import SYMBOLS
+from .common import parameter_text, pi_ticks, place_panels, root_figure, start_text
 from .palette import IMPACTING, colour_of, solution_order
 
 

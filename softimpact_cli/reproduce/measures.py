@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import config  # noqa: F401  (config before info: the kinds registry imports it)
 from ..analysis.labels import parse_label
 from ..analysis.stability import basin_stability, wilson_interval
 from ..report.info import sweep_summary

@@ -20,6 +20,7 @@ from math import ceil
 import numpy as np
 
 from ..kernels.exact import HEADER, STEP_PHASE, expm
+from . import get_system
 from .base import System
 
 LINEARITY_TOL = 1e-9  # relative: the check on random states and times
@@ -97,8 +98,6 @@ def exact_block(system: System, params: np.ndarray) -> np.ndarray:
 
 @lru_cache(maxsize=256)
 def _cached_block(model: str, bodies: int, packed: bytes) -> np.ndarray:
-    from . import get_system
-
     system = get_system(model, bodies)
     params = np.frombuffer(packed, dtype=np.float64)
     dim = system.dim
