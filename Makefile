@@ -182,15 +182,17 @@ $(LYAPUNOV): $(STAMP)
 # Continuation (README: "Continuation of periodic orbits"): the single Duffing body's
 # hysteresis loop in F (two folds, the saddle dashed, brute-force sweeps up and down),
 # figure 7 as branches in d (grazing at the critical distances, impacting orbits, folds),
-# Ueda's period-doubling cascade in F, and figure 14(c)'s impacting orbit in c_c (its
-# subcritical Neimark-Sacker point). About 10 s, a minute, 30 s and 15 s.
+# Ueda's period-doubling cascade in F, figure 14(c)'s impacting orbit in c_c (its
+# subcritical Neimark-Sacker point), and the pair's symmetric orbit at phi = pi in w (two
+# branch points, the asymmetric pair switched onto). About 10 s, a minute, 30 s, 15 s, 30 s.
 CONTINUATION := continuation-duffing-fold continuation-fig07 continuation-ueda \
-	continuation-fig14c-ns
+	continuation-fig14c-ns continuation-pitchfork
 continuation: $(CONTINUATION)
 continuation-duffing-fold: configs/continuation/duffing_fold_F.toml
 continuation-fig07: configs/continuation/fig07_duffing_continuation.toml
 continuation-ueda: configs/continuation/ueda_period_doubling_F.toml
 continuation-fig14c-ns: configs/continuation/fig14c_neimark_sacker_c_c.toml
+continuation-pitchfork: configs/continuation/pitchfork_w.toml
 $(CONTINUATION): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) plot continuation results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
@@ -311,7 +313,7 @@ help:
 	@echo "  fig15b map-d-phi  one figure each (results/<target>.{h5,png}; QUICK=1 works too)"
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
 	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
-	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda, fig. 14(c) NS"
+	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda, fig. 14(c) NS, pitchforks"
 	@echo "  chaos             chaotic and quasi-periodic attractors: fig. 15(b) at c_c = 3, 4; the period-5 design"
 	@echo "  reproduce         the study's 89 statements checked -> results/reproduce.md (QUICK=1)"
 	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"

@@ -71,7 +71,7 @@ def branch_variables(base: OrbitMap, branches: list[Branch]) -> tuple[dict, dict
                            {"units": "forcing periods"}),
         "branch_parent": (("branch",), np.array([b.parent for b in branches], dtype=np.int64),
                           {"long_name": "branch switched from at a period doubling "
-                                        "(-1: a start)"}),
+                                        "or branch point (-1: a start)"}),
         "branch_first": (("branch",), first.astype(np.int64),
                          {"long_name": "index of the branch's first point"}),
         "branch_size": (("branch",), np.array([len(b.points) for b in branches],

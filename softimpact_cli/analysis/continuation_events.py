@@ -4,7 +4,8 @@ With the Floquet multipliers mu_i of a point (eigenvalues of the monodromy M, n 
 
 - fold / branch point: ``psi_LP = Re prod (mu_i - 1)`` (= ±det(M - I)); a real multiplier
   through +1. A fold when the parameter component of the tangent turns (the branch turns
-  back), else a branch point (another branch crosses; reported, not switched onto);
+  back), else a branch point (another branch crosses: the symmetry-breaking pitchfork of
+  a symmetric orbit, or a transcritical crossing; switched onto, see below);
 - period doubling: ``psi_PD = Re prod (mu_i + 1)``; a real multiplier through -1;
 - Neimark-Sacker: ``psi_NS = Re prod_{i<j} (mu_i mu_j - 1)`` (the bialternate product's
   determinant); zero when a complex pair crosses the unit circle, but also at a "neutral
@@ -24,12 +25,26 @@ Between two consecutive points whose test function differs in sign, the zero is 
 by bisection safeguarded with the Illinois secant step on the arclength step sigma from
 the left point (each trial point corrected on the hyperplane normal to the left
 tangent), until the bracket is below LOCATE_TOL in arclength or |psi| below its floor.
+A branch point is located on the chord instead (:func:`locate_branch_point`): there the
+corrector's matrix ``[J; t^T]`` is itself singular (J has a two-dimensional null space),
+so each trial point is predicted on the chord of the shrinking bracket and corrected on
+the hyperplane normal to it, and the point returned is the chord's point at the secant
+root of the last bracket that Newton could still resolve (its residual is the chord's
+curvature error, ~1e-13 on the shipped cases, and a multiplier is +1 to ~1e-12).
 
 Branch switching at a period doubling of a period-p orbit: the doubled orbit is a fixed
 point of P^(2p), which the old orbit also is; at the bifurcation the new branch leaves
 along the eigenvector v of M for mu = -1. :func:`doubled_direction` gives the predictor
 direction (v, 0) made orthogonal to the old branch's tangent, so the corrector's
 hyperplane does not cut the old branch near the bifurcation.
+
+Branch switching at a branch point: the null space of J = [M - I | dG/dlam] is spanned
+there by the old branch's tangent t and (v, 0), v the eigenvector of M for mu = +1 (the
+null vector of M - I); the crossing branch leaves along (v, 0) made orthogonal to t (for
+the pitchfork of a symmetric orbit exactly: v breaks the symmetry, t keeps it).
+:func:`switch_at_branch_point` steps along it to either side and corrects on the
+hyperplane normal to it, which meets the crossing branch near the predictor and the old
+one only a distance ~sqrt(step / curvature) away.
 """
 
 from __future__ import annotations
@@ -38,7 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .continuation import Point, correct, start_point, tangent
+from .continuation import MAX_CORRECTION, Point, correct, start_point, tangent
 from .critical_distance import critical_distance
 from .shooting import OrbitMap
 
@@ -47,7 +62,9 @@ EVENT_KINDS = ("fold", "branch point", "period doubling", "Neimark-Sacker", "gra
 HALF_PERIOD_TOL = 1e-3  # a half-period orbit this near (relative) a turn: its origin
 LOCATE_TOL = 1e-12  # bracket in arclength
 MAX_BISECTIONS = 80
-SWITCH_STEPS = (1.0, 0.5, 0.25, 2.0)  # predictor steps tried onto a doubled branch
+SWITCH_STEPS = (1.0, 0.5, 0.25, 2.0)  # predictor steps tried onto a switched branch
+POLISH_STEPS = 3  # Newton steps on a located branch point, singular direction left out
+SINGULAR = 1e-6  # relative singular value below which a direction is left out
 COMPLEX_TOL = 1e-7  # |Im mu| above this: a complex pair (Neimark-Sacker, not neutral saddle)
 
 
@@ -181,9 +198,87 @@ def turn_events(orbit_map: OrbitMap, left: Point, right: Point, fold_sign_change
         at = locate(orbit_map, left, right, 0, tol) if fold_sign_changed else turn
         return [] if at is None else [Event("fold", at, -1)]
     if fold_sign_changed:
-        at = locate(orbit_map, left, right, 0, tol)
-        return [] if at is None else [Event("branch point", at, -1)]
+        return [Event("branch point", locate_branch_point(orbit_map, left, right, tol), -1)]
     return []
+
+
+def locate_branch_point(orbit_map: OrbitMap, left: Point, right: Point, tol: float) -> Point:
+    """The zero of psi_LP between two consecutive points of a leg where the branch does not
+    turn (see the module docstring): Illinois-safeguarded bisection on the chord of the
+    bracket, each trial corrected on the hyperplane normal to the chord and refused when
+    the corrector moves it by more than MAX_CORRECTION times the bracket (it has slid onto
+    the crossing branch); the point returned is the chord's point at the secant root of
+    the last bracket, evaluated without Newton (singular there), its tangent the chord's."""
+    A, B = left, right
+    fa, fb = _test(orbit_map, A, 0), _test(orbit_map, B, 0)
+    side = 0
+    for _ in range(MAX_BISECTIONS):
+        chord = B.u - A.u
+        length = float(np.linalg.norm(chord))
+        if length <= LOCATE_TOL * max(1.0, right.step):
+            break
+        w = fa / (fa - fb) if fb != fa else 0.5
+        if not 0.01 < w < 0.99:
+            w = 0.5
+        guess = A.u + w * chord
+        found = correct(orbit_map, guess, chord / length, tol)
+        if found is None or np.linalg.norm(found[0] - guess) > MAX_CORRECTION * length:
+            break  # the singular corrector cannot resolve a narrower bracket
+        u, value, k = found
+        trial = Point(u, value, chord / length, left.step, k)
+        fm = _test(orbit_map, trial, 0)
+        if abs(fm) <= 1e-14:
+            return _on_leg(trial, left, right)
+        if np.sign(fm) == np.sign(fa):
+            A, fa = trial, fm
+            if side == 1:
+                fb *= 0.5
+            side = 1
+        else:
+            B, fb = trial, fm
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    chord = B.u - A.u
+    w = fa / (fa - fb) if fb != fa else 0.5
+    u = A.u + w * chord
+    value = orbit_map.evaluate(u[:-1], u[-1])
+    if not value.ok:
+        return A if abs(fa) <= abs(fb) else B
+    normal = chord / np.linalg.norm(chord)
+    return _on_leg(_polish(orbit_map, Point(u, value, normal, left.step, 0), tol), left, right)
+
+
+def _polish(orbit_map: OrbitMap, point: Point, tol: float) -> Point:
+    """Newton steps from ``point`` on G = 0 and the hyperplane through it normal to its
+    tangent, in the well-conditioned directions only: those of singular values below
+    SINGULAR times the largest (at a branch point, the crossing branch's direction) are
+    left as they are, so the residual the chord's curvature left is removed without
+    sliding along the crossing branch. Stops at ``tol`` or when a step does not help."""
+    u, value = point.u, point.value
+    for _ in range(POLISH_STEPS):
+        residual = float(np.max(np.abs(value.residual)))
+        if residual <= tol:
+            break
+        A = np.vstack([value.jacobian, point.tangent])
+        b = np.append(value.residual, point.tangent @ (u - point.u))
+        left_vectors, singular, right_vectors = np.linalg.svd(A)
+        keep = singular > SINGULAR * singular[0]
+        du = right_vectors[keep].T @ ((left_vectors[:, keep].T @ b) / singular[keep])
+        trial = orbit_map.evaluate(u[:-1] - du[:-1], u[-1] - du[-1])
+        if not trial.ok or float(np.max(np.abs(trial.residual))) >= residual:
+            break
+        u, value = u - du, trial
+    return Point(u, value, point.tangent, point.step, point.newton)
+
+
+def _on_leg(point: Point, left: Point, right: Point) -> Point:
+    """``point`` with the tangent of the leg there (the two ends' tangents interpolated:
+    J's null vector is not unique at a branch point) and its arclength from ``left``."""
+    s = float(np.clip((point.u - left.u) @ left.tangent / max(right.step, 1e-300), 0.0, 1.0))
+    t = (1.0 - s) * left.tangent + s * right.tangent
+    return Point(point.u, point.value, t / np.linalg.norm(t),
+                 float(np.linalg.norm(point.u - left.u)), point.newton)
 
 
 def detect(orbit_map: OrbitMap, left: Point, right: Point, tol: float) -> list[Event]:
@@ -214,8 +309,15 @@ def doubled_direction(point: Point) -> np.ndarray:
     """(n + 1,) unit predictor direction onto the period-doubled branch at a located period
     doubling: the eigenvector of the multiplier nearest -1, lam fixed, made orthogonal to
     the branch's tangent."""
+    return crossing_direction(point, -1.0)
+
+
+def crossing_direction(point: Point, multiplier: float) -> np.ndarray:
+    """(n + 1,) unit direction (v, 0) made orthogonal to the branch's tangent, v the
+    eigenvector of the multiplier nearest ``multiplier`` (-1 at a period doubling, +1 at a
+    branch point); its sign is the eigenvector's as numpy returns it."""
     mu, vectors = np.linalg.eig(point.value.monodromy)
-    v = np.real(vectors[:, int(np.argmin(np.abs(mu + 1.0)))])
+    v = np.real(vectors[:, int(np.argmin(np.abs(mu - multiplier)))])
     d = np.append(v / np.linalg.norm(v), 0.0)
     t = point.tangent
     d = d - (d @ t) * t
@@ -236,5 +338,24 @@ def switch_to_doubled(orbit_map: OrbitMap, point: Point, step: float, tol: float
         u, value, k = found
         status, image, _ = orbit_map.image(u[:-1], u[-1])
         if status == 0 and np.max(np.abs(image - u[:-1])) >= 0.1 * h:  # not the old orbit
+            return Point(u, value, tangent(value, direction), h, k)
+    return None
+
+
+def switch_at_branch_point(orbit_map: OrbitMap, point: Point, step: float, tol: float,
+                           side: float) -> Point | None:
+    """The first point of the branch crossing at a located branch point, on its ``side``
+    (+1 or -1 along :func:`crossing_direction`), at arclength about ``step``, its tangent
+    set (pointing away from the branch point); None when Newton fails or the corrected
+    point is not near its predictor (fallen onto the old branch) for the steps
+    ``step * SWITCH_STEPS``."""
+    direction = side * crossing_direction(point, 1.0)
+    for h in step * np.array(SWITCH_STEPS):
+        guess = point.u + h * direction
+        found = correct(orbit_map, guess, direction, tol)
+        if found is None:
+            continue
+        u, value, k = found
+        if np.linalg.norm(u - guess) <= MAX_CORRECTION * h:
             return Point(u, value, tangent(value, direction), h, k)
     return None

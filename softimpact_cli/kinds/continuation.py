@@ -1,6 +1,6 @@
 """[analysis] kind = "continuation": branches of periodic orbits, stable and unstable,
-followed in one parameter by pseudo-arclength continuation, with folds, period doublings,
-Neimark-Sacker points and grazing located (``analysis/continuation*.py``)."""
+followed in one parameter by pseudo-arclength continuation, with folds, branch points,
+period doublings, Neimark-Sacker points and grazing located (``analysis/continuation*.py``)."""
 
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ class ContinuationAnalysis:
     step, min_step, max_step : arclength steps in the Euclidean norm of (state, parameter)
     max_points : points per direction of each branch
     tolerance : Newton tolerance on |P^p(y) - y|_inf
-    switch_depth : period doublings switched onto, nested (0: none)
+    switch_depth : period doublings and branch points switched onto, nested (0: none)
     brute_force_step : the brute-force sweep's parameter step, up and down from each
         start (0: no sweep)
     """
@@ -172,8 +172,8 @@ def plan(scene, workers=None, chunk_size=None) -> str:
     brute = f"; brute force every {a.brute_force_step:g}" if a.brute_force_step else ""
     return (f"continuation: {what} in {a.parameter} from {scene.values[a.parameter]:g} "
             f"within [{a.low:g}, {a.high:g}], steps {a.min_step:g}..{a.max_step:g}, at most "
-            f"{a.max_points} points per direction, {a.switch_depth} period doublings "
-            f"deep{brute}")
+            f"{a.max_points} points per direction, {a.switch_depth} switches (period "
+            f"doublings, branch points) deep{brute}")
 
 
 def summary(ds) -> dict:
@@ -185,8 +185,9 @@ def report(ds) -> str:
 
 
 KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and unstable) "
-                      "followed in one parameter; folds, period doublings, Neimark-Sacker "
-                      "and grazing located", read, plan, sections=sections, shrink=shrink,
+                      "followed in one parameter; folds, branch points, period doublings, "
+                      "Neimark-Sacker and grazing located", read, plan, sections=sections,
+                      shrink=shrink,
                       run=run, summary=summary, report=report,
                       info_after=lambda ds: report(ds).splitlines(),
                       progress_unit="branches",

@@ -3,6 +3,7 @@ result whose info --json and figure hold the branches and bifurcations."""
 
 import json
 import threading
+from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
@@ -91,3 +92,40 @@ def test_no_start_converging_is_one_line_and_writes_nothing(tmp_path):
     # (timers other tests left running are theirs to answer for)
     assert not [t for t in threading.enumerate()
                 if t.name == "softimpact-progress" and t not in timers_before]
+
+
+@pytest.mark.slow
+def test_the_pitchfork_scene_reports_and_follows_its_two_branch_points(tmp_path):
+    """configs/continuation/pitchfork_w.toml (the README's command): the symmetric orbit
+    of the pair at phi = pi, d = 6 loses and regains stability in w through two branch
+    points (no fold); the asymmetric pair switched onto at the first ends at the second.
+    About 30 s of computing."""
+    out = tmp_path / "pitchfork.h5"
+    runner = CliRunner()
+    scene = Path(__file__).parents[2] / "configs" / "continuation" / "pitchfork_w.toml"
+    result = runner.invoke(main, ["sweep", str(scene), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    data = json.loads(runner.invoke(main, ["info", str(out), "--json"]).output)["continuation"]
+    symmetric = "L1^1 R1-0^1"
+    points = [e for e in data["bifurcations"] if e["kind"] == "branch point"]
+    assert [e["branch"] for e in points] == [symmetric, symmetric]
+    assert sorted(e["parameter"] for e in points) == [pytest.approx(1.0642063, abs=1e-6),
+                                                       pytest.approx(1.1251762, abs=1e-6)]
+    for e in points:
+        assert min(abs(complex(*m) - 1.0) for m in e["multipliers"]) < 1e-8
+    branches = {b["name"]: b for b in data["branches"]}
+    assert sorted(branches) == [symmetric, f"{symmetric} BP1+", f"{symmetric} BP1-"]
+    for side in "+-":
+        b = branches[f"{symmetric} BP1{side}"]
+        assert b["switched_from"] == symmetric
+        assert b["ends"] == ["switched", f"meets {symmetric} at a branch point"]
+        assert b["range"] == [pytest.approx(1.0642063, abs=1e-6), pytest.approx(1.18358,
+                                                                                  abs=1e-4)]
+        assert b["stability"][1] == {"stable": True, "from": pytest.approx(1.0642, abs=1e-3),
+                                     "to": pytest.approx(1.0997, abs=1e-3)}
+    text = runner.invoke(main, ["info", str(out)]).output
+    assert f"branch point     w = 1.064206254 on {symmetric};" in text
+    png = tmp_path / "pitchfork.png"
+    plot = runner.invoke(main, ["plot", "continuation", str(out), "-o", str(png)])
+    assert plot.exit_code == 0, plot.output
+    assert png.stat().st_size > 10_000
