@@ -15,9 +15,7 @@ from pathlib import Path
 import click
 
 from .config import ConfigError, check_writable, result_path
-from .config.examples import EXAMPLES
-from .config.examples import example as example_scene
-from .kinds import KINDS, sweep_kinds
+from .kinds import KINDS, example_scene, help_lines, sweep_kinds
 from .kinds import get as kind_of
 from .kinds.check import check_scene, over_limit
 from .kinds.design_settings import with_target
@@ -160,7 +158,21 @@ def _scheduler(ctx, param, value):
     return value
 
 
-@main.command()
+class _KindsHelp(click.Command):
+    """A command whose help lists the kinds of the registry where it says ``{kinds}``
+    (read when the help is shown: the kinds' modules are imported then)."""
+
+    def format_help_text(self, ctx, formatter) -> None:
+        help_text = self.help
+        # the docstring's indentation (click dedents the whole text)
+        self.help = help_text.replace("{kinds}", "\n    ".join(help_lines("  ")))
+        try:
+            super().format_help_text(ctx, formatter)
+        finally:
+            self.help = help_text
+
+
+@main.command(cls=_KindsHelp)
 @click.argument("scene")
 @click.option("-o", "--output", help="Result file (overrides [output] path).")
 @click.option("--overwrite", is_flag=True, help="Replace an existing result file.")
@@ -199,15 +211,9 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     """Run SCENE (a TOML file) and write its result to HDF5.
 
     SCENE's [analysis] kind says what is computed:
+
     \b
-      trajectory   one trajectory, recorded and classified
-      catalogue    the attractors of one body and the pair's combinations
-      basins       the label of every start on a plane, at every [grid] point
-      stability    basin stability: shares of random starts, 95% Wilson intervals
-      dcrit        critical distance d_crit(phi) of every combination
-      bifurcation  each solution followed along d, destruction points located
-      map          coexisting solutions over two parameters, predicted and found
-      design       (d, phi, k_c, c_c) where only the target survives (see design)
+    {kinds}
 
     Example scenes: configs/ (demo, trajectory, catalogues, designs) and
     configs/figures/ (every figure of the study); `softimpact example KIND` prints a
@@ -489,11 +495,11 @@ def example(kind):
     """
 
     if kind is None:
-        click.echo("kinds: " + ", ".join(EXAMPLES) + " (softimpact example KIND)")
+        click.echo("kinds: " + ", ".join(KINDS) + " (softimpact example KIND)")
         return
-    if kind not in EXAMPLES:
+    if kind not in KINDS:
         click.echo(f"softimpact: error: example: unknown kind {kind!r}; kinds: "
-                   f"{', '.join(EXAMPLES)}", err=True)
+                   f"{', '.join(KINDS)}", err=True)
         sys.exit(2)
     click.echo(example_scene(kind), nl=False)
 

@@ -238,3 +238,12 @@ def test_the_python_api_section_runs_as_written(tmp_path):
     assert (tmp_path / "results" / "basins.h5").is_file()
     lines = run.stdout.strip().splitlines()
     assert lines[-1] == "True" and "(1, 1, 1, 1, 1, 16, 16)" in lines[0]
+
+
+def test_the_readme_lists_every_kind_of_the_registry():
+    from softimpact_cli.kinds import REGISTRY
+
+    text = " ".join(README.split())
+    listed = re.search(r"minimal commented scene of each analysis kind \(([^:]*):", text)
+    assert listed is not None
+    assert re.findall(r"`(\w+)`", listed.group(1)) == list(REGISTRY)

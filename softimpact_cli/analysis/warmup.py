@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ..config import IntegratorSettings
-from ..kernels import METHODS, orbit
+from ..kernels import METHODS, method_traits, orbit
 from ..kernels.numba_cache import SAVES_LOCKED
 from ..systems import REGISTRY, get_system, variational
 from .catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
@@ -148,7 +148,7 @@ def _steps(model: str | None = None) -> list:
         steps.append((f"{name} {kind}: rk4 step check",
                       lambda s=system: rk4_step_warning(Problem(s, s.defaults()))))
         for method in METHODS:
-            if method == "exact" and not system.piecewise_linear:
+            if method_traits(method).closed_form and not system.piecewise_linear:
                 continue
             steps.append((f"{name} {kind}: {method}", lambda s=system, m=method: run_system(s, m)))
         if bodies == 1:

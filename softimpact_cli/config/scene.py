@@ -18,10 +18,10 @@ from typing import Any
 
 import numpy as np
 
-from ..kernels import ALIASES, METHOD_MODULES
+from ..kernels import ALIASES, METHOD_MODULES, MethodTraits, method_traits
 from ..kernels.cells import MAX_CELL_DIM
 from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
-from ..systems.base import SUPPORTED_BODIES
+from ..systems.base import SUPPORTED_BODIES, forcing_period_of
 from ..systems.piecewise_linear import exact_refusal
 from .limits import (
     MAX_NESTING,
@@ -42,7 +42,7 @@ METHODS = (*METHOD_MODULES, *ALIASES)  # the kernels' registry
 
 def forcing_period(values: Mapping[str, Any]) -> float:
     """The forcing period T = 2 pi / w of a parameter point (``values["w"]``)."""
-    return 2.0 * math.pi / float(values["w"])
+    return forcing_period_of(values["w"])
 
 
 @dataclass(frozen=True)
@@ -101,6 +101,11 @@ class IntegratorSettings:
         """The kernel method the run uses ('stiff' is the L-stable Rodas4; 'auto' runs the
         adaptive explicit pair and switches to Rodas4 where its step is stability bound)."""
         return ALIASES.get(self.method, self.method)
+
+    @property
+    def traits(self) -> MethodTraits:
+        """What the method is: has a tolerance, fixed step, closed form (kernels)."""
+        return method_traits(self.method)
 
 
 @dataclass(frozen=True)
@@ -263,12 +268,12 @@ def read_common(text: str, source: str = "<string>"
                           f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
                           "use cell_size = 0")
     integrator = _default_method(doc, system, values, integrator)
-    if integrator.method == "exact" and "method" not in doc.get("integrator", {}):
+    if integrator.traits.closed_form and "method" not in doc.get("integrator", {}):
         # said in the text: its hash (resume, caches) then tells the runs apart from
         # those made when the default was "auto"
         text += ('\n# [integrator] method = "exact": the default for a piecewise-linear '
                  "system (no method, rtol or atol set)\n")
-    if integrator.resolved_method == "exact":
+    if integrator.traits.closed_form:
         _check_exact(source, system, values, integrator)
     period = forcing_period(values)
     ctx = SceneContext(source, doc, system, values, period,

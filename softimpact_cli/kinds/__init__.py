@@ -23,6 +23,7 @@ from __future__ import annotations
 import importlib
 from collections.abc import Iterator, Mapping
 
+from ..config.examples import example
 from ..config.reader import ConfigError
 from .base import (  # noqa: F401  (what a kind declares, named here too)
     AnalysisKind,
@@ -34,11 +35,6 @@ from .base import (  # noqa: F401  (what a kind declares, named here too)
     read_state,
     read_t0,
 )
-
-# the modules declaring kinds, in the order `--help` lists them
-MODULES = ("trajectory", "catalogue", "sweeps", "tipping", "fatal_shock", "dcrit", "bifurcation",
-           "design", "fractality", "lyapunov", "continuation")
-
 
 # ---------------------------------------------------------------- the registry
 
@@ -104,6 +100,20 @@ def __getattr__(name: str):
     if name == "SWEEP_KINDS":
         return sweep_kinds()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def example_scene(name: str) -> str:
+    """The commented example scene of kind ``name`` (``softimpact example``): the kind's
+    own, else the study's in ``config.examples``; KeyError for an unknown kind."""
+    kind = KINDS[name]
+    return kind.example if kind.example is not None else example(name)
+
+
+def help_lines(indent: str = "  ") -> list[str]:
+    """One line per kind, ``name  description``, in the registry's order (``sweep
+    --help``, the README's list)."""
+    width = max(len(name) for name in REGISTRY)
+    return [f"{indent}{name:{width}s}  {KINDS[name].description}" for name in REGISTRY]
 
 
 def get(name: str) -> AnalysisKind:

@@ -116,6 +116,8 @@ class AnalysisKind:
     compare(a, b, name_a, name_b) -> dict, compare_text(report, max_points) -> list[str] :
         ``softimpact compare`` of two results of this kind (None: not comparable)
     plot : its figure (``softimpact plot <kind>``), a PlotSpec
+    example : its minimal commented scene (``softimpact example <kind>``; None: the
+        study's kinds keep theirs in ``config.examples``)
     """
 
     name: str
@@ -137,6 +139,7 @@ class AnalysisKind:
     progress_unit: str = "steps"
     options: tuple[str, ...] = field(default=())  # run options it takes (workers, ...)
     plot: PlotSpec | None = None
+    example: str | None = None
 
     def __post_init__(self) -> None:
         for f in fields(self):  # "module:function" hooks: imported when first called

@@ -65,16 +65,8 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"one body at t0 = {a.t0:g}")
 
 
-def summary(ds) -> dict:
-    return catalogue_summary(ds)
-
-
-def report(ds) -> str:
-    return format_catalogue(ds)
-
-
 KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
-                      read, plan, run=run, summary=summary, report=report,
+                      read, plan, run=run, summary=catalogue_summary, report=format_catalogue,
                       progress_unit="initial conditions",
                       plot=PlotSpec("Attractors on the phase plane and one panel per "
                                     "combination of a catalogue RESULT.")),)

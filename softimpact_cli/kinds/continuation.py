@@ -176,20 +176,12 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"doublings, branch points) deep{brute}")
 
 
-def summary(ds) -> dict:
-    return continuation_info(ds)
-
-
-def report(ds) -> str:
-    return format_continuation(ds)
-
-
 KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and unstable) "
                       "followed in one parameter; folds, branch points, period doublings, "
                       "Neimark-Sacker and grazing located", read, plan, sections=sections,
                       shrink=shrink,
-                      run=run, summary=summary, report=report,
-                      info_after=lambda ds: report(ds).splitlines(),
+                      run=run, summary=continuation_info, report=format_continuation,
+                      info_after=lambda ds: format_continuation(ds).splitlines(),
                       progress_unit="branches",
                       plot=PlotSpec("Branches against the parameter (stable solid, unstable "
                                     "dashed, bifurcations marked, brute-force points "

@@ -118,10 +118,6 @@ def check(scene, sample: int, seed: int, result=None) -> dict:
             "wall_ratio": out["tight"][1] / max(out["scene"][1], 1e-12)}
 
 
-def compare(a, b, name_a: str, name_b: str) -> dict:
-    return compare_dcrit(a, b, name_a, name_b)
-
-
 def compare_text(report: dict, max_points: int) -> list[str]:
     return dcrit_comparison_text(report)
 
@@ -142,5 +138,5 @@ PLOT = PlotSpec(
 
 KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
                       plan, sections=sections, shrink=shrink, run=run, check=check,
-                      compare=compare, compare_text=compare_text, progress_unit="phases",
+                      compare=compare_dcrit, compare_text=compare_text, progress_unit="phases",
                       plot=PLOT),)

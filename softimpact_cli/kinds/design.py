@@ -104,26 +104,14 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"{a.phi_points} phases")
 
 
-def summary(ds) -> dict:
-    return design_summary(ds)
-
-
-def report(ds) -> str:
-    return format_design(ds)
-
-
 def info_lines(ds) -> list[str]:
-    return [report(ds)]
-
-
-def outcome_counts(ds):
-    return design_counts(ds)
+    return [format_design(ds)]
 
 
 KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target survives (see "
-                      "design)", read, plan, sections=sections, run=run, summary=summary,
-                      report=report, info_lines=info_lines, info_catalogue=False,
-                      outcome_counts=outcome_counts, progress_unit="trajectories",
+                      "design)", read, plan, sections=sections, run=run, summary=design_summary,
+                      report=format_design, info_lines=info_lines, info_catalogue=False,
+                      outcome_counts=design_counts, progress_unit="trajectories",
                       options=("workers", "scheduler", "echo"),
                       plot=PlotSpec("The (d, phi) plane with the target-only region, the "
                                     "pick and runners-up, beside the basin stability at "

@@ -101,17 +101,10 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"{a.scan} magnitudes up to {a.max_shock:g}, bisection to {a.tol:g}")
 
 
-def summary(ds) -> dict:
-    return fatal_shock_summary(ds)
-
-
-def info_lines(ds) -> list[str]:
-    return fatal_shock_lines(ds)
-
-
 KINDS = (AnalysisKind(
     "fatal_shock", "minimal fatal shock: the smallest kick that sends a solution elsewhere",
-    read, plan, sections=sections, run=run, summary=summary, info_lines=info_lines,
+    read, plan, sections=sections, run=run, summary=fatal_shock_summary,
+    info_lines=fatal_shock_lines,
     info_catalogue=False, options=("workers",), progress_unit="phases",
     plot=PlotSpec("The fatal shocks of a fatal_shock RESULT against the phase of the "
                   "orbit: the smallest over directions, the median and the quartiles.")),)

@@ -101,22 +101,14 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             + line.removeprefix("basins: ").removeprefix("plan: "))
 
 
-def summary(ds) -> dict:
-    return fractality_summary(ds)
-
-
-def info_after(ds) -> list[str]:
-    return fractality_lines(ds)
-
-
 def report(ds) -> str:
-    return "\n".join(info_after(ds))
+    return "\n".join(fractality_lines(ds))
 
 
 KINDS = (AnalysisKind(
     "fractality", "basin entropy, uncertainty exponent and Wada test of a plane",
-    read, plan, sections=sections, run=run, summary=summary, report=report,
-    info_after=info_after, info_catalogue=False, progress_unit="trajectories",
+    read, plan, sections=sections, run=run, summary=fractality_summary, report=report,
+    info_after=fractality_lines, info_catalogue=False, progress_unit="trajectories",
     options=("workers", "scheduler", "echo"),
     plot=PlotSpec("S_b and S_bb against the box size, the uncertainty fit and the Wada map "
                   "of a fractality RESULT (softimpact measure), one row per plane.",

@@ -140,18 +140,11 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"segments, {a.per_period} re-orthonormalisations per period{salt}")
 
 
-def summary(ds) -> dict:
-    return lyapunov_summary(ds)
-
-
-def report(ds) -> str:
-    return format_lyapunov(ds)
-
-
 KINDS = (AnalysisKind("lyapunov", "Lyapunov exponents (Benettin, saltation at switches) of "
                       "a trajectory, of catalogue solutions or along a parameter", read, plan,
-                      sections=sections, shrink=shrink, run=run, summary=summary,
-                      report=report, info_after=lambda ds: report(ds).splitlines(),
+                      sections=sections, shrink=shrink, run=run, summary=lyapunov_summary,
+                      report=format_lyapunov,
+                      info_after=lambda ds: format_lyapunov(ds).splitlines(),
                       progress_unit="spectra",
                       plot=PlotSpec("Lyapunov exponents with their standard errors (against "
                                     "the parameter, beside the section states, for a grid "

@@ -84,24 +84,8 @@ def check(scene, sample, seed, result=None) -> dict:
     return check_sweep(scene, sample, seed, result)
 
 
-def summary(ds) -> dict:
-    return sweep_summary(ds)
-
-
 def stability_summary(ds) -> dict:
-    return {**summary(ds), "stability": shares(ds)}
-
-
-def outcome_counts(ds):
-    return label_counts(ds)
-
-
-def compare(a, b, name_a: str, name_b: str) -> dict:
-    return compare_sweeps(a, b, name_a, name_b)
-
-
-def compare_text(report: dict, max_points: int) -> list[str]:
-    return sweep_comparison_text(report, max_points)
+    return {**sweep_summary(ds), "stability": shares(ds)}
 
 
 def map_counts(ds, scene, catalogue):
@@ -139,13 +123,14 @@ PLOTS = {
 KINDS = tuple(
     AnalysisKind(name, description, _reader(name, settings), plan, sections=sections,
                  shrink=shrink, check=check, summary=summarise,
-                 outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
+                 outcome_counts=label_counts, compare=compare_sweeps,
+                 compare_text=sweep_comparison_text,
                  progress_unit="trajectories", plot=PLOTS[name])
     for name, description, summarise, settings in (
-        ("basins", "the label of every start on a plane, at every [grid] point", summary,
+        ("basins", "the label of every start on a plane, at every [grid] point", sweep_summary,
          SweepAnalysis),
         ("stability", "basin stability: shares of random starts, 95% Wilson intervals",
          stability_summary, SweepAnalysis),
-        ("map", "coexisting solutions over two parameters, predicted and found", summary,
+        ("map", "coexisting solutions over two parameters, predicted and found", sweep_summary,
          MapAnalysis),
     ))

@@ -18,23 +18,16 @@ import xarray as xr
 
 from ..analysis.tipping import attractor_destinations, tipping_probabilities
 from ..config.reader import ConfigError
+from ..report.compare import compare_sweeps, sweep_comparison_text
+from ..report.info import sweep_summary
+from ..report.outcomes import label_counts
 from ..report.tipping import tipping_lines, tipping_summary
 from ..sweep import label_states
 from ..sweep.plan import SweepSettings
 from ..sweep.result import grid_dims
 from .base import AnalysisKind, PlotOption, PlotSpec, Sections
-from .sweeps import (
-    SHOW_ERROR,
-    _reader,
-    check,
-    compare,
-    compare_text,
-    outcome_counts,
-    plan,
-    shrink,
-)
+from .sweeps import SHOW_ERROR, _reader, check, plan, shrink
 from .sweeps import sections as sweep_sections
-from .sweeps import summary as sweep_summary
 
 
 @dataclass(frozen=True)
@@ -95,15 +88,12 @@ def summary(ds) -> dict:
     return {**sweep_summary(ds), "tipping": tipping_summary(ds)}
 
 
-def info_after(ds) -> list[str]:
-    return tipping_lines(ds)
-
-
 KINDS = (AnalysisKind(
     "tipping", "tipping probabilities: where basins and solutions go between two points",
     _reader("tipping", TippingAnalysis), plan, sections=sections, shrink=shrink, check=check,
-    summary=summary, info_after=info_after,
-    outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
+    summary=summary, info_after=tipping_lines,
+    outcome_counts=label_counts, compare=compare_sweeps,
+    compare_text=sweep_comparison_text,
     progress_unit="trajectories",
     plot=PlotSpec("The tipping matrix of a tipping RESULT (and, over a plane, the basins "
                   "before and after).", complete=True,

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..analysis.stability import basin_stability
 from ..config import GRID_AXES
+from ..kernels import method_traits
 from ..kernels.codes import CLASSIFIED_BY, STATUS_TABLE
 from ..sweep.result import grid_dims, grid_point  # noqa: F401  (named here too)
 from .nonperiodic import nonperiodic_summary
@@ -35,7 +36,7 @@ def _plain(value):
 
 def _first_method(ds) -> str:
     """What the steps that are not Rodas4's are: the explicit pair's, or the exact flow's."""
-    exact = ds.attrs.get("integrator_resolved_method") == "exact"
+    exact = method_traits(str(ds.attrs.get("integrator_resolved_method", ""))).closed_form
     return "exact flow" if exact else "explicit"
 
 

@@ -22,7 +22,7 @@ from ..analysis.catalogue import (
     extend_catalogue,
 )
 from ..analysis.design import AXES, NoRegion, design
-from ..config import ConfigError, Grid, Scene
+from ..config import ConfigError, Grid, Scene, forcing_period
 from ..store.catalogues import scene_body_attractors
 from ..store.provenance import provenance
 from .chunks import CELL_BLOCK
@@ -67,7 +67,7 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
     executor = make_executor(workers, scheduler)
     echo(f"executor: {executor.describe()}")
     ic = scene.initial_conditions
-    t0_per_sample = ic.random_t0(2 * np.pi / float(scene.values["w"])) if ic.t0 is None \
+    t0_per_sample = ic.random_t0(forcing_period(scene.values)) if ic.t0 is None \
         else None
     catalogues: dict[float, Catalogue] = {}
 
@@ -114,7 +114,7 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
                      "parameters": ", ".join(f"{k}={v}" for k, v in chosen.items()),
                      "t0_mode": "random" if ic.t0 is None else "fixed",
                      "t0": float(ic.t0) if ic.t0 is not None else -1.0,
-                     "forcing_period": 2 * np.pi / float(scene.values["w"]),
+                     "forcing_period": forcing_period(scene.values),
                      "sample_box": ", ".join(f"{k}=[{lo:g}, {hi:g}]"
                                              for k, (lo, hi) in ic.box.items()),
                      "sample_seed": ic.seed, "catalogue_source": search.source})

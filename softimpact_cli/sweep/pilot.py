@@ -74,10 +74,10 @@ def skip_reason(scene: Scene, total: int) -> str | None:
     by_hand = [k for k in ("rtol", "atol") if k in scene.sections.get("integrator", {})]
     if by_hand:
         return f"[integrator] {' and '.join(by_hand)} set by hand"
-    if scene.integrator.resolved_method == "rk4":
-        return "fixed-step rk4 has no tolerance"
-    if scene.integrator.resolved_method == "exact":
-        return "the exact flow has no tolerance"
+    traits = scene.integrator.traits
+    if not traits.tolerance:
+        return (f"fixed-step {scene.integrator.resolved_method} has no tolerance"
+                if traits.fixed_step else "the exact flow has no tolerance")
     if not [r for r in CANDIDATES if r > scene.integrator.rtol]:
         return f"no candidate looser than rtol {scene.integrator.rtol:g}"
     if total < MIN_TOTAL_RATIO * settings.pilot_sample:

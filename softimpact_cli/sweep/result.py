@@ -8,7 +8,7 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.labels import latex_of, name_of
-from ..config import GRID_AXES, GRID_UNITS, Scene
+from ..config import GRID_AXES, GRID_UNITS, Scene, forcing_period
 from .chunks import RESULT_FIELDS
 
 ATTRIBUTES = {
@@ -71,7 +71,7 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     along = ("panel",) if grid.panels else None
     coords: dict = {a: (along or a, np.array(grid.axes[a]), {"units": GRID_UNITS[a]})
                     for a in GRID_AXES}
-    period = 2 * np.pi / float(scene.values["w"])
+    period = forcing_period(scene.values)
     if "t0" not in grid.swept and ic.t0 is not None:  # the fixed start actually used
         coords["t0"] = (along or "t0", np.full(len(grid.axes["t0"]), float(ic.t0)),
                         coords["t0"][2])

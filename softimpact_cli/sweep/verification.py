@@ -76,9 +76,9 @@ def not_applicable(kind) -> str:
 def settings_text(s: IntegratorSettings) -> str:
     """The integrator settings that decide labels, as one line."""
     parts = [s.resolved_method]
-    if s.resolved_method != "exact":  # (the exact flow has no tolerance)
+    if not s.traits.closed_form:  # (the exact flow has no tolerance)
         parts += [f"rtol {s.rtol:.3g}", f"atol {s.atol:.3g}"]
-    if s.resolved_method == "rk4":
+    if s.traits.fixed_step:
         parts.append(f"{s.steps_per_period} steps per period")
     parts += [f"convergence_tol {s.convergence_tol:.3g}", f"{s.max_periods} periods",
               f"capture {s.capture_tol:g}" if s.capture_tol > 0 else "capture off",
@@ -150,7 +150,7 @@ def ladder(s: IntegratorSettings, blame: str = "shortcuts"
     ``blame`` (:meth:`Attempt.blame`) "tolerance": the tolerance first, capture and cells
     kept (they cost nothing in labels there), then both. The exact flow has no tolerance
     to tighten: its one rung is capture and cells off."""
-    if s.resolved_method == "exact":
+    if s.traits.closed_form:
         blame = "shortcuts"
     if blame == "tolerance":
         tighter = replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
@@ -164,7 +164,7 @@ def ladder(s: IntegratorSettings, blame: str = "shortcuts"
     if s.cell_size > 0 or s.capture_tol > 0:
         s = replace(s, cell_size=0.0, capture_tol=0.0)
         rungs.append(("recurrence cells and capture off", s))
-    if s.resolved_method == "exact":
+    if s.traits.closed_form:
         return rungs
     s = replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
                 steps_per_period=4 * s.steps_per_period)

@@ -44,7 +44,7 @@ def rk4_available(st, runs):
                         '[integrator]\nmethod = "rk4"\nsteps_per_period = 1440\n'
                         'locate_switches = false\n')
     i = scene.integrator
-    ok = i.resolved_method == "rk4" and i.steps_per_period == 1440 and not i.locate_switches
+    ok = i.traits.fixed_step and i.steps_per_period == 1440 and not i.locate_switches
     return Measure(ok, "[integrator] method = \"rk4\", steps_per_period = 1440, "
                    "locate_switches = false is accepted (softimpact's default is 'auto')",
                    ("scene parse",))
