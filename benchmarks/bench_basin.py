@@ -57,6 +57,7 @@ from study_method import StudyMethod
 from where_time_goes import StageClock, phases, rhs_floor
 
 from softimpact_cli.analysis.labels import name_of
+from softimpact_cli.config.axes import catalogue_key
 from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep
 
 REFERENCE = TIGHT  # no capture, no cells: the reference converges by itself
@@ -164,7 +165,7 @@ def main(argv=None) -> int:
     t = time.perf_counter()
     catalogues, names = prepare_catalogues(scene)
     t_cat = time.perf_counter() - t
-    catalogue = catalogues[float(scene.values["phi"])]
+    catalogue = catalogues[catalogue_key(scene.system, scene.values)]
     tol = scene.analysis.label_tol
     study_method = StudyMethod.of(scene, catalogue)
     study_method.label(states[0])  # compiles RK4 (excluded from the timing, as above)

@@ -45,6 +45,7 @@ from scipy_contestant import scipy_label
 from study_method import StudyMethod
 from where_time_goes import StageClock, rhs_floor
 
+from softimpact_cli.config.axes import catalogue_key
 from softimpact_cli.sweep.runner import prepare_catalogues, run_sweep
 from softimpact_cli.sweep.verification import sweep_verified
 
@@ -95,7 +96,7 @@ def plane_rows(name: str, resolution: int, sample: int, tmp: Path) -> dict:
               f"{rows[key]['same']}/{rows[key]['n']}", flush=True)
     scene = plane_scene(name, resolution, BEFORE)
     catalogues, _ = prepare_catalogues(scene)
-    catalogue = catalogues[float(scene.values.get("phi", 0.0))]
+    catalogue = catalogues[catalogue_key(scene.system, scene.values)]
     states = scene.initial_conditions.array()[picks]
     study = StudyMethod.of(scene, catalogue)
     rows["study"] = sample_row(study.label, states[:STUDY_SAMPLE], picks, ref)

@@ -351,16 +351,18 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
 
 
 def _report_verification(ds) -> bool:
-    """Print the label-error line; a note when inconclusive, a warning when over the
-    threshold. Returns whether it is over the threshold."""
+    """Print the label-error line; a note when some rerun label disagreed although the
+    error is within the threshold, a warning when it is over. A clean run (none disagreed,
+    whatever the bound) gets no note. Returns whether it is over the threshold."""
     # the analyses, xarray and the store: imported when the command runs
-    from .commands import INCONCLUSIVE, OVER, verification_line
+    from .commands import OVER, VERIFIED, verification_line
 
     click.echo(verification_line(ds.attrs))
     status = ds.attrs["verify_status"]
-    if status == INCONCLUSIVE:
-        click.echo(f"softimpact: note: label error inconclusive: {ds.attrs['verify_message']}",
-                   err=True)
+    if status == VERIFIED and int(ds.attrs.get("verify_disagreements", 0)) > 0:
+        click.echo(f"softimpact: note: {ds.attrs['verify_disagreements']} of "
+                   f"{ds.attrs['verify_sample']} rerun labels disagreed "
+                   f"({ds.attrs['verify_changes']}); {ds.attrs['verify_message']}", err=True)
     if status == OVER:
         click.echo(f"softimpact: warning: label error over the threshold: "
                    f"{ds.attrs['verify_message']}", err=True)

@@ -29,10 +29,10 @@ from .reproduce.table import summary
 from .store.catalogue_cache import cache_folder, clear, switched_off
 from .store.catalogue_cache import info as cache_state
 from .store.sweep_store import SweepStore
-from .sweep.verification import INCONCLUSIVE, OVER
+from .sweep.verification import OVER, VERIFIED
 
 __all__ = [
-    "CACHE", "INCONCLUSIVE", "OVER", "Problem", "STRICT_STATUS", "SweepStore",
+    "CACHE", "OVER", "VERIFIED", "Problem", "STRICT_STATUS", "SweepStore",
     "announce_compilation", "cache_folder", "cache_state", "clear", "compare_results",
     "compare_shares", "describe", "format_comparison", "format_summary",
     "fractality_lines", "incomplete_summary", "limits_exceeded", "measure_result",

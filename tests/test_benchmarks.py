@@ -74,11 +74,12 @@ def test_contestants_name_a_start_on_an_orbit_as_the_catalogue_does(contestants,
     must name a start on a known orbit with that orbit's name, or the agreement column
     measures the contestants' bookkeeping, not their integration."""
     scipy_contestant, study_method, _ = contestants
+    from softimpact_cli.config.axes import catalogue_key
     from softimpact_cli.sweep.runner import prepare_catalogues
 
     scene = __import__("_common").scene_at(2)
     catalogues, _ = prepare_catalogues(scene)
-    catalogue = catalogues[0.0]
+    catalogue = catalogues[catalogue_key(scene.system, scene.values)]
     combination = catalogue.combinations[-1]
     start = combination.orbit[0]  # a joint section point of the orbit, at t = 0 mod T
     tol = scene.analysis.label_tol

@@ -54,6 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from ..config.axes import COUPLING_AXES
 from ..kernels.codes import OK
 from .catalogue import SHOOTING, body_problem, combinations, right_attractors
 from .critical_distance import critical_distances
@@ -61,7 +62,7 @@ from .engine import Problem, flow
 from .labels import name_of
 from .stability import groups, wilson_interval
 
-AXES = ("d", "phi", "k_c", "c_c")
+AXES = COUPLING_AXES  # a design searches over the coupling
 IMPACTING = "impacting (all)"
 TWO_PI = 2 * np.pi
 

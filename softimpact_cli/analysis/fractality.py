@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ..config.axes import GRID_AXES
 from .basin_entropy import basin_entropy, default_box_sizes
 from .uncertainty import default_radii, uncertainty_exponent
 from .wada import wada_merge
@@ -22,7 +23,6 @@ from .wada import wada_merge
 KEPT_ATTRS = ("model", "bodies", "ic_dims", "parameters", "forcing_period", "t0_mode", "t0",
               "t0_over_T", "plane_fixed", "catalogue_names", "scene_source", "scene_text",
               "scene_sha256", "grid_swept")
-GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
 
 
 def plane_problem(ds: xr.Dataset) -> str | None:
@@ -61,7 +61,9 @@ def planes(ds: xr.Dataset):
     for index in np.ndindex(*shape):
         sel = dict(zip(grid, index, strict=True))
         point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims})
-                          .values) for a in GRID_AXES if a in ds}
+                          .values)
+                 for a in tuple(str(ds.attrs.get("grid_parameters", "")).split()) + GRID_AXES
+                 if a in ds}
         yield point, label.values[index]
 
 

@@ -17,9 +17,14 @@ from .labels import parse_label
 
 
 def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list,
-                   dims: tuple[str, ...]) -> xr.Dataset:
+                   dims: tuple[str, ...], body_lefts: dict | None = None) -> xr.Dataset:
     """Add predicted_count, found_count, found_nonimpacting to a sweep result whose grid
-    points span ``dims`` (``sweep.result.grid_dims``)."""
+    points span ``dims`` (``sweep.result.grid_dims``).
+
+    ``body_lefts``: when the grid sweeps body parameters (``config.axes``), the left
+    attractors at each of their values, {((axis, value), ...): attractors}; the
+    prediction at a point then uses the d_crit of its own attractors (``d_crit`` stored
+    is the first's)."""
     names = [str(n) for n in ds["label_name"].values]
     codes = [int(c) for c in ds["label_code"].values]
     kinds = [parse_label(n).kind for n in names]
@@ -32,12 +37,16 @@ def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list,
     found = (present & attractor).sum("label_index")
     found_free = (present & free).sum("label_index")
     phis = np.unique(np.asarray(ds["phi"].values, dtype=float))
-    dc = critical_distances(system, values, left_attractors, phis)
-    table = {float(p): dc["d_crit"].values[:, i] for i, p in enumerate(dc["phi"].values)}
-    d_b, phi_b = xr.broadcast(ds["d"], ds["phi"])
-    predicted = np.vectorize(lambda d, p: int(np.sum(table[float(p)] < d)))(d_b.values,
-                                                                           phi_b.values)
-    predicted = xr.DataArray(predicted, dims=d_b.dims).broadcast_like(found)
+    if body_lefts:
+        dc, predicted = _predicted_per_body(ds, dims, system, values, body_lefts, phis)
+        predicted = predicted.broadcast_like(found)
+    else:
+        dc = critical_distances(system, values, left_attractors, phis)
+        table = {float(p): dc["d_crit"].values[:, i] for i, p in enumerate(dc["phi"].values)}
+        d_b, phi_b = xr.broadcast(ds["d"], ds["phi"])
+        predicted = np.vectorize(lambda d, p: int(np.sum(table[float(p)] < d)))(d_b.values,
+                                                                               phi_b.values)
+        predicted = xr.DataArray(predicted, dims=d_b.dims).broadcast_like(found)
     out = ds.assign(
         predicted_count=predicted.transpose(*dims).assign_attrs(
             long_name="non-impacting combinations predicted to survive (d_crit < d)"),
@@ -49,3 +58,28 @@ def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list,
         d_crit=dc["d_crit"].rename(phi="dcrit_phi", combination="dcrit_combination"),
     )
     return out.assign_coords(dcrit_phi=("dcrit_phi", dc["phi"].values))
+
+
+def _predicted_per_body(ds: xr.Dataset, dims: tuple[str, ...], system, values: dict,
+                        body_lefts: dict, phis: np.ndarray) -> tuple[xr.Dataset, xr.DataArray]:
+    """(d_crit at the first body parameters, predicted count per grid point) when the
+    grid sweeps body parameters: each point counts the combinations of its own left
+    attractors whose d_crit(phi) lies below d."""
+    tables, first = {}, None
+    for key, left in body_lefts.items():
+        dc = critical_distances(system, {**values, **dict(key)}, left, phis)
+        first = dc if first is None else first
+        tables[key] = {float(p): dc["d_crit"].values[:, i]
+                       for i, p in enumerate(dc["phi"].values)}
+    axes = [a for a, _ in next(iter(body_lefts))]
+    shape = tuple(ds.sizes[d] for d in dims)
+    predicted = np.zeros(shape, dtype=int)
+    for index in np.ndindex(*shape):
+        sel = dict(zip(dims, index, strict=True))
+
+        def at(name, sel=sel):
+            return float(ds[name].isel({k: v for k, v in sel.items() if k in ds[name].dims}))
+
+        key = tuple((a, at(a)) for a in axes)
+        predicted[index] = int(np.sum(tables[key][at("phi")] < at("d")))
+    return first, xr.DataArray(predicted, dims=dims)

@@ -2,8 +2,9 @@
 
 Continuation (``analysis/continuation.py``) solves ``G(y, lam) = P^p_lam(y) - y = 0``, where
 ``P_lam`` advances a state at t = 0 (mod T) by one forcing period T = 2 pi / w at the
-parameter value ``lam`` of the continued parameter (d, phi, k_c, c_c, F or w; the others
-stay at the scene's values). :meth:`OrbitMap.evaluate` returns, at one (y, lam):
+parameter value ``lam`` of the continued parameter (any model parameter: c, k1, k2, F, w,
+d1, exponent, d, phi, k_c, c_c, as ``config.axes`` lists them; the others stay at the
+scene's values). :meth:`OrbitMap.evaluate` returns, at one (y, lam):
 
 - the residual ``G`` (n,), the monodromy ``M = dP^p/dy`` (n, n) and ``dG/dlam`` (n,);
 - ``max_g``: the maximum of the contact function x1 - x2 - d along the p periods (the
@@ -43,8 +44,6 @@ from .engine import Problem, flow
 
 SHOOTING = IntegratorSettings(method="dopri5", rtol=1e-12, atol=1e-13)
 PARAMETER_STEP = 1e-6
-# the parameters a branch can be continued in, and the body counts each one exists for
-PARAMETERS = {"d": (2,), "phi": (2,), "k_c": (2,), "c_c": (2,), "F": (1, 2), "w": (1, 2)}
 
 
 class MapValue(NamedTuple):

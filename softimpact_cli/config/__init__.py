@@ -7,17 +7,19 @@ key, and what is allowed. Unknown sections and keys are errors, never ignored.
 - ``reader``: the table reader and the error type;
 - ``scene``: [system], [coupling], [integrator], [output] and the Scene (its kind's
   sections are read by ``kinds.scene``, above: config knows no kind);
+- ``axes``: the axes a sweep can span, defined once;
 - ``sweep``: [grid], [initial_conditions] and [catalogue] for sweeps;
 - ``verification``: [verification], how a sweep measures its label error.
 """
 
+from .axes import COUPLING_AXES, GRID_AXES, GRID_UNITS
 from .reader import ConfigError, check_writable
 from .scene import IntegratorSettings, Scene, SceneContext, forcing_period, result_path
-from .sweep import GRID_AXES, GRID_UNITS, CatalogueSettings, Grid, InitialConditions
+from .sweep import CatalogueSettings, Grid, InitialConditions
 from .verification import VerificationSettings
 
-__all__ = ["GRID_AXES", "GRID_UNITS", "CatalogueSettings", "ConfigError", "Grid",
-           "InitialConditions", "IntegratorSettings", "Scene", "SceneContext",
+__all__ = ["COUPLING_AXES", "GRID_AXES", "GRID_UNITS", "CatalogueSettings", "ConfigError",
+           "Grid", "InitialConditions", "IntegratorSettings", "Scene", "SceneContext",
            "VerificationSettings", "check_writable", "forcing_period", "result_path"]
 
 # names that moved up to the kinds (config knows no kind: ARCHITECTURE.md)

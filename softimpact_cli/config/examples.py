@@ -129,6 +129,7 @@ start = 22.0
 stop = 4.0
 step = 0.5
 # branches = ["L1^1 R1-0^1"]   # default: every combination of the catalogue
+# parameter = "w"          # follow along another parameter (default d): w, F, c, k1, ...
 
 [output]
 path = "results/example_bifurcation.h5"

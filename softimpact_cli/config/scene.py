@@ -23,6 +23,7 @@ from ..kernels.cells import MAX_CELL_DIM
 from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
 from ..systems.base import SUPPORTED_BODIES, forcing_period_of
 from ..systems.piecewise_linear import exact_refusal
+from .axes import COUPLING_AXES
 from .limits import (
     MAX_NESTING,
     check_nesting,
@@ -138,7 +139,7 @@ def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
         raise sec.fail("model", f"is required; one of {', '.join(map(repr, MODELS))}")
     bodies = sec.integer("bodies", 2, min(SUPPORTED_BODIES), max(SUPPORTED_BODIES))
     system = get_system(model, bodies)
-    body_params = [p for p in system.parameters if p.name not in ("d", "phi", "k_c", "c_c")]
+    body_params = [p for p in system.parameters if p.name not in COUPLING_AXES]
     values: dict[str, Any] = {}
     for param in body_params:
         values[param.name] = sec.number(
@@ -172,7 +173,7 @@ def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any
         elif sec.has(key.name):
             users = " or ".join(repr(lw.name) for lw in STOP_LAWS.values() if key in lw.keys)
             raise sec.fail(key.name, f"only with law = {users}; law is {law.name!r}")
-    sec.finish(("d", "phi", "k_c", "c_c", "law") + tuple(LAW_KEYS))
+    sec.finish(COUPLING_AXES + ("law",) + tuple(LAW_KEYS))
 
 
 def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
@@ -243,7 +244,7 @@ def read_common(text: str, source: str = "<string>"
                 ) -> tuple[dict, str, System, dict[str, Any], IntegratorSettings, SceneContext]:
     """The sections every scene has, validated: (TOML document, scene text, system,
     parameter values, integrator settings, the context a kind reads its sections with).
-    The text gains a comment where a default it depends on was chosen (the method)."""
+    The method's default waits for the grid (``settle_method``)."""
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -267,18 +268,28 @@ def read_common(text: str, source: str = "<string>"
         raise ConfigError(f"{source}: [integrator] cell_size: recurrence cells hold states of "
                           f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
                           "use cell_size = 0")
-    integrator = _default_method(doc, system, values, integrator)
+    period = forcing_period(values)
+    ctx = SceneContext(source, doc, system, values, period,
+                       lambda axis, v: _check_axis(system, axis, v, period))
+    return doc, text, system, values, integrator, ctx
+
+
+def settle_method(source: str, doc: dict, text: str, system: System, values: dict[str, Any],
+                  grid: Grid | None, integrator: IntegratorSettings
+                  ) -> tuple[IntegratorSettings, str]:
+    """(integrator, scene text) once the scene's grid is known: the default method chosen
+    over every parameter point it runs ("exact" where all allow it, said in the text),
+    and "exact" checked at each of them."""
+    points = _parameter_points(values, grid)
+    integrator = _default_method(doc, system, points, integrator)
     if integrator.traits.closed_form and "method" not in doc.get("integrator", {}):
         # said in the text: its hash (resume, caches) then tells the runs apart from
         # those made when the default was "auto"
         text += ('\n# [integrator] method = "exact": the default for a piecewise-linear '
                  "system (no method, rtol or atol set)\n")
     if integrator.traits.closed_form:
-        _check_exact(source, system, values, integrator)
-    period = forcing_period(values)
-    ctx = SceneContext(source, doc, system, values, period,
-                       lambda axis, v: _check_axis(system, axis, v, period))
-    return doc, text, system, values, integrator, ctx
+        _check_exact(source, system, points, integrator)
+    return integrator, text
 
 
 def read_output(source: str, doc: dict) -> Path:
@@ -286,30 +297,47 @@ def read_output(source: str, doc: dict) -> Path:
     return _read_output(source, doc, Path("."))
 
 
-def _default_method(doc: dict, system, values, integrator: IntegratorSettings
+def _parameter_points(values: dict, grid: Grid | None) -> list[dict]:
+    """The scene's parameter values at each point of a grid that sweeps model parameters
+    besides the coupling (``Grid.parameters``), else the scene's values alone."""
+    if grid is None or not grid.parameters:
+        return [values]
+    seen = {tuple(grid.point(i)[a] for a in grid.parameters) for i in range(grid.size)}
+    return [{**values, **dict(zip(grid.parameters, key, strict=True))} for key in sorted(seen)]
+
+
+def _default_method(doc: dict, system, points: list[dict], integrator: IntegratorSettings
                     ) -> IntegratorSettings:
     """A scene that names no method and no tolerance integrates a piecewise-linear system
-    (the bilinear models with a linear stop law) on its exact flow, else with "auto"."""
+    (the bilinear models with a linear stop law) on its exact flow, else with "auto";
+    ``points``: the parameter values of every point it runs (all must allow it)."""
     chosen = doc.get("integrator", {})
     if any(k in chosen for k in ("method", "rtol", "atol")) or not integrator.locate_switches:
         return integrator
     if not system.piecewise_linear:
         return integrator
 
-    if exact_refusal(system, system.pack(values)) is not None:
+    if any(exact_refusal(system, system.pack(values)) is not None for values in points):
         return integrator
     return replace(integrator, method="exact")
 
 
-def _check_exact(source: str, system, values, integrator: IntegratorSettings) -> None:
-    """Method 'exact' integrates piecewise-linear systems only, switches located."""
+def _check_exact(source: str, system, points: list[dict],
+                 integrator: IntegratorSettings) -> None:
+    """Method 'exact' integrates piecewise-linear systems only, switches located, at
+    every parameter point of the scene."""
     if not integrator.locate_switches:
         raise ConfigError(f"{source}: [integrator] method = \"exact\" locates every switch; "
                           "locate_switches = false is for rk4 (the study's plain scheme)")
-    why = exact_refusal(system, system.pack(values)) if system.piecewise_linear else (
-        f"the {system.model} model is not piecewise linear")
-    if why is not None:
-        raise ConfigError(f"{source}: [integrator] method = \"exact\": {why}; use \"auto\"")
+    for values in points:
+        why = exact_refusal(system, system.pack(values)) if system.piecewise_linear else (
+            f"the {system.model} model is not piecewise linear")
+        if why is not None:
+            varying = [k for k in values if any(p[k] != values[k] for p in points)]
+            at = (" at the grid point " + ", ".join(f"{k} = {values[k]:g}" for k in varying)
+                  if varying else "")
+            raise ConfigError(f"{source}: [integrator] method = \"exact\": {why}{at}; use "
+                              "\"auto\"")
 
 
 def _check_axis(system: System, axis: str, value: float, period: float) -> str | None:
@@ -321,6 +349,8 @@ def _check_axis(system: System, axis: str, value: float, period: float) -> str |
     for param in system.parameters:
         if param.name == axis:
             return param.check(value) or parameter_problem(axis, value)
+    if axis in LAW_KEYS:  # a stop law's own key (the Hunt-Crossley exponent)
+        return LAW_KEYS[axis].check(value)
     return None
 
 

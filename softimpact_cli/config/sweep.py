@@ -1,8 +1,9 @@
 """Sweep sections: [grid], [initial_conditions] and [catalogue].
 
-[grid] sweeps any of d, phi, k_c, c_c (and t0): a single value, a list, ``{start, stop,
-num}`` or ``{start, stop, step}`` (phi also in the pi-string forms, t0 in T-strings).
-Values not swept come from [coupling] (t0 from [initial_conditions]).
+[grid] sweeps any of d, phi, k_c, c_c and t0 and, where the kind allows, any other model
+parameter (``config.axes``): a single value, a list, ``{start, stop, num}`` or ``{start,
+stop, step}`` (phi also in the pi-string forms, t0 in T-strings). Values not swept come
+from [system] and [coupling] (t0 from [initial_conditions]).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..systems.base import check_bodies
+from .axes import COUPLING_AXES, GRID_AXES
 from .expressions import parse_multiple
 from .limits import (
     MAX_GRID_VALUES,
@@ -23,33 +25,38 @@ from .limits import (
 )
 from .reader import ConfigError, Section, positive
 
-GRID_AXES = ("d", "phi", "k_c", "c_c", "t0")
-GRID_UNITS = {"d": "1", "phi": "rad", "k_c": "1", "c_c": "1", "t0": "1"}
-
 
 @dataclass(frozen=True)
 class Grid:
     """The parameter points of a sweep.
 
     Cartesian (default): ``axes`` holds the values of every axis (length 1 when not swept)
-    and the points are their product, dims GRID_AXES. Panels (``[grid] panels = [{d = ..,
-    phi = ..}, ...]``): an explicit list of points along one dim ``panel``, each axis a
-    coordinate of it (``axes`` then holds the per-panel values).
+    and the points are their product, dims ``parameters + GRID_AXES``. Panels (``[grid]
+    panels = [{d = .., phi = ..}, ...]``): an explicit list of points along one dim
+    ``panel``, each axis a coordinate of it (``axes`` then holds the per-panel values).
+    ``parameters``: the model parameters swept besides GRID_AXES (``config.axes``), each a
+    dim of its own; they take their values from ``axes`` at every point.
     """
 
     axes: Mapping[str, tuple[float, ...]]
     swept: tuple[str, ...]
     panels: bool = False
+    parameters: tuple[str, ...] = ()
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Every axis with a value at each point: the swept parameters, then GRID_AXES."""
+        return self.parameters + GRID_AXES
 
     @property
     def dims(self) -> tuple[str, ...]:
-        return ("panel",) if self.panels else GRID_AXES
+        return ("panel",) if self.panels else self.names
 
     @property
     def shape(self) -> tuple[int, ...]:
         if self.panels:
             return (len(self.axes["d"]),)
-        return tuple(len(self.axes[a]) for a in GRID_AXES)
+        return tuple(len(self.axes[a]) for a in self.names)
 
     @property
     def size(self) -> int:
@@ -59,9 +66,9 @@ class Grid:
     def point(self, flat: int) -> dict[str, float]:
         """Axis values of grid point number ``flat`` (C order over the dims)."""
         if self.panels:
-            return {a: self.axes[a][flat] for a in GRID_AXES}
+            return {a: self.axes[a][flat] for a in self.names}
         index = np.unravel_index(flat, self.shape)
-        return {a: self.axes[a][i] for a, i in zip(GRID_AXES, index, strict=True)}
+        return {a: self.axes[a][i] for a, i in zip(self.names, index, strict=True)}
 
     def distinct(self, axis: str) -> tuple[float, ...]:
         """The distinct values ``axis`` takes over the grid, in first-seen order."""
@@ -202,16 +209,22 @@ def _values(sec: Section, key: str, symbol: str | None, unit: float) -> tuple[fl
 
 
 def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: float,
-              check_value) -> Grid:
-    """[grid] for a sweep; ``check_value(axis, value)`` returns a problem or None."""
+              check_value, parameters: tuple[str, ...] = ()) -> Grid:
+    """[grid] for a sweep; ``check_value(axis, value)`` returns a problem or None.
+
+    ``parameters``: the model parameters the kind can sweep besides the coupling and t0
+    (``config.axes.parameter_axes``; empty where it sweeps those only). A parameter absent
+    from ``values`` (the exponent of a law without one) is refused.
+    """
     sec = Section(source, "grid", doc.get("grid", {}))
     check_bodies(bodies, "[grid] (coupling axes of one pair)")
-    allowed = GRID_AXES if bodies == 2 else ("t0",)
+    allowed = tuple(parameters) + (COUPLING_AXES if bodies == 2 else ()) + ("t0",)
     if sec.has("panels"):
         return _read_panels(sec, values, allowed, period, check_value)
     axes: dict[str, tuple[float, ...]] = {}
-    for axis in GRID_AXES:
-        if sec.has(axis) and axis in allowed:
+    for axis in allowed:
+        if sec.has(axis):
+            _check_parameter(sec, axis, axis, values)
             if axis == "phi":
                 axes[axis] = _values(sec, axis, "pi", math.pi)
             elif axis == "t0":
@@ -223,6 +236,8 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
                 if problem:
                     raise sec.fail(axis, f"{problem}, got {v!r}")
     sec.finish(allowed)
+    if "w" in axes and "t0" in axes:
+        raise sec.fail("t0", W_SWEPT_T0)
     swept = tuple(axes)
     points = math.prod(len(v) for v in axes.values())
     if points > MAX_GRID_VALUES:
@@ -231,7 +246,20 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
     for axis in GRID_AXES:
         if axis not in axes:
             axes[axis] = (float(values.get(axis, 0.0)),) if axis != "t0" else (0.0,)
-    return Grid(axes, swept)
+    return Grid(axes, swept, parameters=tuple(a for a in parameters if a in swept))
+
+
+# why a start time cannot go with a swept w (the t0 of [grid] or [initial_conditions])
+W_SWEPT_T0 = ("cannot be set while w is swept: the forcing period 2 pi / w changes from "
+              "point to point, so one start time would be another phase at each; every "
+              "point starts at t0 = 0, its section time")
+
+
+def _check_parameter(sec: Section, where: str, axis: str, values: Mapping) -> None:
+    """A model parameter the scene does not have (a stop law's key under another law)."""
+    if axis not in GRID_AXES and axis not in values:
+        raise sec.fail(where, f"is not a parameter of this scene (its stop law "
+                              f"{values.get('law', 'paper')!r} has no {axis})")
 
 
 def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period: float,
@@ -245,14 +273,19 @@ def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period
                                  "phi = \"pi\"}")
     if len(panels) > MAX_GRID_VALUES:
         raise sec.fail("panels", f"{len(panels)} panels; at most {MAX_GRID_VALUES}")
-    axes: dict[str, list[float]] = {a: [] for a in GRID_AXES}
+    parameters = tuple(a for a in allowed if a not in GRID_AXES
+                       and any(a in p for p in panels))
+    axes: dict[str, list[float]] = {a: [] for a in parameters + GRID_AXES}
     swept = []
     for i, panel in enumerate(panels):
         for key in panel:
             if key not in allowed:
                 raise sec.fail(f"panels[{i}].{key}", f"unknown key; allowed: "
                                                      f"{', '.join(allowed)}")
-        for axis in GRID_AXES:
+            _check_parameter(sec, f"panels[{i}].{key}", key, values)
+        if "w" in panel and "t0" in panel:
+            raise sec.fail(f"panels[{i}].t0", W_SWEPT_T0)
+        for axis in axes:
             where = f"panels[{i}].{axis}"
             if axis in panel:
                 raw = panel[axis]
@@ -275,7 +308,10 @@ def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period
             else:
                 v = float(values.get(axis, 0.0)) if axis != "t0" else 0.0
             axes[axis].append(v)
-    return Grid({a: tuple(v) for a, v in axes.items()}, tuple(swept), panels=True)
+    if "w" in swept and "t0" in swept:
+        raise sec.fail("panels", W_SWEPT_T0.replace("cannot be set", "t0 cannot be set"))
+    return Grid({a: tuple(v) for a, v in axes.items()}, tuple(swept), panels=True,
+                parameters=parameters)
 
 
 def read_box(sec: Section, key: str, names: tuple[str, ...], default=None, required=True):
@@ -308,7 +344,8 @@ def read_box(sec: Section, key: str, names: tuple[str, ...], default=None, requi
 
 
 def read_initial_conditions(source: str, doc: dict, names: tuple[str, ...], period: float,
-                            t0_swept: bool) -> InitialConditions:
+                            t0_swept: bool, w_swept: bool = False) -> InitialConditions:
+    """[initial_conditions]; ``w_swept``: the grid sweeps w, so t0 stays 0 (W_SWEPT_T0)."""
     if "initial_conditions" not in doc:
         raise ConfigError(f"{source}: [initial_conditions]: is required for this analysis "
                           "(kind = \"plane\", \"random\" or \"list\")")
@@ -318,6 +355,8 @@ def read_initial_conditions(source: str, doc: dict, names: tuple[str, ...], peri
     if sec.has("t0"):
         if t0_swept:
             raise sec.fail("t0", "is also swept in [grid]; give it in one place")
+        if w_swept and sec.raw("t0") not in (0, 0.0):
+            raise sec.fail("t0", W_SWEPT_T0)
         raw = sec.raw("t0")
         if raw == "random":
             if kind != "random":

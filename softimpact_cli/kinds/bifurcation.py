@@ -1,4 +1,5 @@
-"""[analysis] kind = "bifurcation": each solution followed along d, destruction located."""
+"""[analysis] kind = "bifurcation": each solution followed along d (or any parameter),
+destruction located."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import xarray as xr
 from ..analysis.bifurcation import bifurcation_dataset, d_values
 from ..analysis.catalogue import catalogue_dataset
 from ..analysis.labels import parse_label
+from ..config.axes import allowed_axes
 from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue
 from ..report.compare import bifurcation_comparison_text, compare_bifurcations
@@ -24,27 +26,34 @@ MAX_STEPS = 100_000
 
 @dataclass(frozen=True)
 class BifurcationAnalysis:
-    """[analysis] kind = "bifurcation": follow solutions as d moves from ``start`` to
-    ``stop`` by ``step`` (each step from the previous end state); ``branches`` names the
-    solutions to follow (default: every combination of the catalogue)."""
+    """[analysis] kind = "bifurcation": follow solutions as ``parameter`` (d by default;
+    any grid axis but t0, ``config.axes``) moves from ``start`` to ``stop`` by ``step``
+    (each step from the previous end state); ``branches`` names the solutions to follow
+    (default: every solution of the catalogue)."""
 
     kind: str
     start: float
     stop: float
     step: float
     branches: tuple[str, ...] = ()
+    parameter: str = "d"
 
 
 def read(sec, ctx) -> BifurcationAnalysis:
-    if ctx.system.bodies != 2:
-        raise sec.fail("kind", "bifurcation along d needs a pair ([system] bodies = 2)")
+    allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
+    if ctx.system.bodies != 2 and not sec.has("parameter"):
+        raise sec.fail("kind", "bifurcation along d needs a pair ([system] bodies = 2); one "
+                               f"body follows its solutions along parameter = one of "
+                               f"{', '.join(allowed)}")
+    parameter = sec.choice("parameter", "d", allowed)
     start = sec.number("start", None)
     stop = sec.number("stop", None)
     step = sec.number("step", None, positive)
     for key, v in (("start", start), ("stop", stop)):
-        problem = ctx.check_axis("d", v)
+        problem = ctx.check_axis(parameter, v)
         if problem:
-            raise sec.fail(key, f"{problem} (a distance d), got {v!r}")
+            what = "a distance d" if parameter == "d" else f"a value of {parameter}"
+            raise sec.fail(key, f"{problem} ({what}), got {v!r}")
     if start == stop:
         raise sec.fail("stop", "must differ from start")
     if abs(stop - start) / step > MAX_STEPS:
@@ -52,13 +61,14 @@ def read(sec, ctx) -> BifurcationAnalysis:
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
         raise sec.fail("branches", f"must be a list of names like 'L1^1 R1-0^2', got {raw!r}")
+    kind = "pair" if ctx.system.bodies == 2 else "body"
     for b in raw:
         try:
-            if parse_label(b).kind != "pair":
-                raise ValueError(f"{b!r} is not a non-impacting pair solution")
+            if parse_label(b).kind != kind:
+                raise ValueError(f"{b!r} is not a non-impacting {kind} solution")
         except ValueError as exc:
             raise sec.fail("branches", str(exc)) from None
-    return BifurcationAnalysis("bifurcation", start, stop, step, tuple(raw))
+    return BifurcationAnalysis("bifurcation", start, stop, step, tuple(raw), parameter)
 
 
 def sections(analysis, ctx) -> Sections:
@@ -70,11 +80,12 @@ def sections(analysis, ctx) -> Sections:
 def shrink(analysis, grid, axis: int):
     span = abs(analysis.stop - analysis.start)
     return (replace(analysis, step=max(analysis.step, span / QUICK_STEPS)), grid,
-            f", at most {QUICK_STEPS} steps in d")
+            f", at most {QUICK_STEPS} steps in {analysis.parameter}")
 
 
 def run(scene, progress=None, **_):
-    """Follow the scene's branches along d (figure 7), with the catalogue attached."""
+    """Follow the scene's branches along d (figure 7) or the scene's parameter, with the
+    catalogue attached."""
     a = scene.analysis
     values = dict(scene.values)
     cat = scene_catalogue(scene)
@@ -85,7 +96,7 @@ def run(scene, progress=None, **_):
                               f"catalogue ({', '.join(cat.names)})")
     tick = progress(len(branches)) if progress else None
     ds = bifurcation_dataset(scene.system, values, scene.integrator, cat, branches,
-                             d_values(a.start, a.stop, a.step), tick)
+                             d_values(a.start, a.stop, a.step), tick, a.parameter)
     ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
                   combine_attrs="override", compat="override")
     ds.attrs["analysis"] = "bifurcation"
@@ -96,9 +107,9 @@ def run(scene, progress=None, **_):
 def plan(scene, workers=None, chunk_size=None) -> str:
     a = scene.analysis
     branches = f"{len(a.branches)} branches" if a.branches else \
-        "every combination of the catalogue"
-    return (f"bifurcation: {branches} x {d_values(a.start, a.stop, a.step).size} steps of d "
-            f"from {a.start:g} to {a.stop:g} by {a.step:g}")
+        "every solution of the catalogue"
+    return (f"bifurcation: {branches} x {d_values(a.start, a.stop, a.step).size} steps of "
+            f"{a.parameter} from {a.start:g} to {a.stop:g} by {a.step:g}")
 
 
 def check(scene, sample=None, seed=None, result=None) -> dict:
@@ -121,10 +132,11 @@ def check(scene, sample=None, seed=None, result=None) -> dict:
 
 
 def info_lines(ds) -> list[str]:
-    if "d" not in ds.coords:
+    p = str(ds.attrs.get("parameter", "d"))
+    if p not in ds.coords:
         return []
-    d = ds["d"].values
-    return [f"{'d':28s} {d[0]:.6g} -> {d[-1]:.6g} ({d.size} steps)"]
+    d = ds[p].values
+    return [f"{p:28s} {d[0]:.6g} -> {d[-1]:.6g} ({d.size} steps)"]
 
 
 def compare(a, b, name_a: str, name_b: str) -> dict:
@@ -135,9 +147,11 @@ def compare_text(report: dict, max_points: int) -> list[str]:
     return bifurcation_comparison_text(report)
 
 
-KINDS = (AnalysisKind("bifurcation", "each solution followed along d, destruction points "
-                      "located", read, plan, sections=sections, shrink=shrink, run=run,
+KINDS = (AnalysisKind("bifurcation", "each solution followed along d (or any parameter), "
+                      "destruction points located", read, plan, sections=sections,
+                      shrink=shrink, run=run,
                       check=check, info_after=info_lines, compare=compare,
                       compare_text=compare_text, progress_unit="branches",
-                      plot=PlotSpec("Section displacements of both bodies against d, "
-                                    "destruction points marked.")),)
+                      plot=PlotSpec("Section displacements of both bodies (one body: "
+                                    "displacement and velocity) against the followed "
+                                    "parameter, destruction points marked.")),)

@@ -11,7 +11,8 @@ from ..analysis.continuation_branches import continue_starts
 from ..analysis.continuation_dataset import continuation_dataset
 from ..analysis.continuation_sweep import sweeps
 from ..analysis.engine import Problem, classify_state
-from ..analysis.shooting import PARAMETERS, OrbitMap
+from ..analysis.shooting import OrbitMap
+from ..config.axes import allowed_axes
 from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue
 from ..kernels.codes import CONVERGED
@@ -58,7 +59,8 @@ class ContinuationAnalysis:
 
 
 def read(sec, ctx) -> ContinuationAnalysis:
-    allowed = tuple(p for p, bodies in PARAMETERS.items() if ctx.system.bodies in bodies)
+    # any model parameter the scene has (config.axes: the [grid] axes but t0)
+    allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
     parameter = sec.choice("parameter", None, allowed)
     low, high = sec.number("low", None), sec.number("high", None)
     if not low < high:

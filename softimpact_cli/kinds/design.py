@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from ..config.axes import COUPLING_AXES
 from ..config.limits import MAX_TRAJECTORIES, design_trajectories
 from ..config.reader import ConfigError
 from ..config.sweep import read_catalogue, read_initial_conditions
@@ -84,7 +85,7 @@ def fatal_shocks(scene, ds, workers=None) -> dict:
         if not point["target_exists"]:
             out[f"fatal_shock_{role}"] = float("nan")
             continue
-        values = {**scene.values, **{k: point[k] for k in ("d", "phi", "k_c", "c_c")}}
+        values = {**scene.values, **{k: point[k] for k in COUPLING_AXES}}
         shock = fatal_shock_run(replace(scene, values=values, analysis=settings),
                                 workers=workers)
         out[f"fatal_shock_{role}"] = float(shock.attrs["mfs"])

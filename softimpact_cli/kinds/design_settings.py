@@ -12,11 +12,12 @@ from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 from ..analysis.labels import parse_label
+from ..config.axes import COUPLING_AXES
 from ..config.expressions import parse_multiple
 from ..config.limits import MAX_INITIAL_CONDITIONS, MAX_SEED
 from ..config.reader import ConfigError, Section
 
-DESIGN_AXES = ("d", "phi", "k_c", "c_c")
+DESIGN_AXES = COUPLING_AXES  # a design searches over the coupling
 
 
 @dataclass(frozen=True)

@@ -10,9 +10,10 @@ import numpy as np
 
 from ..analysis.engine import Problem, record_trajectory
 from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
+from ..config.axes import GRID_AXES
 from ..config.limits import MAX_SEED
 from ..config.reader import ConfigError, positive
-from ..config.sweep import GRID_AXES, read_catalogue
+from ..config.sweep import read_catalogue
 from ..report.fatal_shock import fatal_shock_lines, fatal_shock_summary
 from ..store.catalogues import scene_catalogue
 from ..sweep import label_states

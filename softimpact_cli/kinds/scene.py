@@ -21,6 +21,7 @@ from ..config.scene import (
     read_common,
     read_output,
     read_scene_file,
+    settle_method,
 )
 from ..config.verification import VerificationSettings, read_verification
 from . import KINDS, sweep_kinds
@@ -68,6 +69,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     read = _read_sections(KINDS[analysis.kind], analysis, ctx)
     analysis, grid = read.analysis, read.grid
     initial, catalogue = read.initial_conditions, read.catalogue
+    integrator, text = settle_method(source, doc, text, system, values, grid, integrator)
     return Scene(source=source, text=text, system=system, values=values,
                  integrator=integrator, analysis=analysis, output=output,
                  sections={k: dict(v) for k, v in doc.items()}, grid=grid,

@@ -12,6 +12,7 @@ import os
 from dataclasses import dataclass, replace
 
 from ..analysis.maps import add_map_counts
+from ..config.axes import catalogue_axes, every_axis, parameter_axes
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
 from ..config.scene import thin
@@ -23,6 +24,7 @@ from ..report.outcomes import label_counts
 from ..sweep.check import check_sweep
 from ..sweep.plan import Plan, SweepSettings, chunk_size_for
 from ..sweep.result import grid_dims
+from ..sweep.runner import prepare_catalogues
 from .base import AnalysisKind, PlotOption, PlotSpec, Sections
 
 
@@ -54,9 +56,10 @@ def _reader(kind: str, settings: type[SweepSettings] = SweepAnalysis):
 
 def sections(analysis, ctx) -> Sections:
     source, doc = ctx.source, ctx.doc
-    grid = read_grid(source, doc, ctx.values, ctx.system.bodies, ctx.period, ctx.check_axis)
+    grid = read_grid(source, doc, ctx.values, ctx.system.bodies, ctx.period, ctx.check_axis,
+                     parameter_axes(ctx.system))
     initial = read_initial_conditions(source, doc, ctx.system.state_names, ctx.period,
-                                      "t0" in grid.swept)
+                                      "t0" in grid.swept, "w" in grid.swept)
     total = grid.size * initial.count
     if total > MAX_TRAJECTORIES:
         raise ConfigError(f"{source}: [grid]/[initial_conditions]: {grid.size} grid points"
@@ -89,9 +92,16 @@ def stability_summary(ds) -> dict:
 
 
 def map_counts(ds, scene, catalogue):
-    """The map's predicted and found numbers of coexisting solutions at each point."""
+    """The map's predicted and found numbers of coexisting solutions at each point (with
+    each point's own attractors when the grid sweeps body parameters)."""
+    body = [a for a in scene.grid.parameters if a in catalogue_axes(scene.system)]
+    lefts = None
+    if body:  # the searches come back from the catalogue cache
+        axes = catalogue_axes(scene.system)
+        lefts = {tuple((a, v) for a, v in zip(axes, key, strict=True) if a in body):
+                 list(cat.attractors) for key, cat in prepare_catalogues(scene)[0].items()}
     return add_map_counts(ds, scene.system, dict(scene.values), list(catalogue.attractors),
-                          grid_dims(ds))
+                          grid_dims(ds), lefts)
 
 
 SHOW_ERROR = PlotOption("--show-error", "show_error", "Print the result's measured label "
@@ -108,7 +118,7 @@ PLOTS = {
         "Basin-stability curves with 95% Wilson bands of a stability RESULT.",
         options=(PlotOption("--against", "against", "Grid axis on the horizontal axis "
                             "(default: the swept one).", kind="choice",
-                            choices=("d", "phi", "k_c", "c_c", "t0")), SHOW_ERROR,
+                            choices=every_axis()), SHOW_ERROR,
                  PlotOption("--entropy", "entropy", "Also the basin entropy of the shares "
                             "H with its 95% bootstrap band (right-hand axis).",
                             kind="flag"),

@@ -7,9 +7,10 @@ from math import ceil
 import numpy as np
 
 from ..analysis.labels import NONPERIODIC_KINDS, parse_label
-from ..config import GRID_AXES
-from ..sweep.result import grid_dims, grid_point
+from ..config.axes import COUPLING_AXES
+from ..sweep.result import grid_axes, grid_dims, grid_point
 from .common import (
+    PARAMETER_TEX,
     multiple_text,
     panel_letter,
     parameter_text,
@@ -21,7 +22,7 @@ from .common import (
 )
 from .palette import colour_of, solution_order
 
-SYMBOLS = {"d": "d", "phi": r"\varphi", "k_c": "k_c", "c_c": "c_c", "t0": "t_0"}
+SYMBOLS = {**PARAMETER_TEX, "t0": "t_0"}  # of every grid axis
 AXIS_SYMBOLS = {"x1": "x_1", "x2": "x_2", "v1": r"\dot x_1", "v2": r"\dot x_2", "x": "x",
                 "v": r"\dot x"}
 # an attractor's section points: its basin's colour inside a black ring and a white
@@ -60,8 +61,8 @@ def varying_axes(ds, always=("d", "phi")) -> list[str]:
     shape = tuple(ds.sizes[d] for d in dims)
     points = [grid_point(ds, index) for index in np.ndindex(*shape)]
     out = []
-    for a in GRID_AXES:
-        if a != "t0" and int(ds.attrs.get("bodies", 2)) == 1:
+    for a in grid_axes(ds):
+        if a in COUPLING_AXES and int(ds.attrs.get("bodies", 2)) == 1:
             continue  # one body: no coupling
         values = {str(p[a]) for p in points}
         if len(values) > 1 or (a in always and a != "t0"):
@@ -101,11 +102,11 @@ def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) 
     if n_panels and "t0" not in varying:
         common.append(start_text(ds, (0,) * len(grid_dims(ds))))
     first = grid_point(ds, (0,) * len(grid_dims(ds)))
-    for a in ("d", "phi", "k_c", "c_c"):
+    for a in COUPLING_AXES:
         if a in varying or not pair:
             continue
         common.append(f"${SYMBOLS[a]} = {axis_value_text(a, first[a], T)}$")
-    params = parameter_text(ds, exclude=("d", "phi", "k_c", "c_c"))
+    params = parameter_text(ds, exclude=COUPLING_AXES + tuple(varying))
     return head + "\n" + ", ".join(common + ([params] if params else []))
 
 

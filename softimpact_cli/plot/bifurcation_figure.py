@@ -9,7 +9,14 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.labels import latex_of
-from .common import panel_letter, parameter_text, place_panels, root_figure, start_text
+from .common import (
+    PARAMETER_TEX,
+    panel_letter,
+    parameter_text,
+    place_panels,
+    root_figure,
+    start_text,
+)
 from .palette import IMPACTING, SPECIAL, colour_of, solution_order
 
 TRANSIENT = SPECIAL["unresolved"]
@@ -37,11 +44,15 @@ def point_styles(ds) -> dict[tuple[int, int], tuple[str, str]]:
 
 
 def draw_bifurcation(ds, ax=None):
-    """Two panels (left body, right body) sharing d (``ax``: 2 Axes in that order, or a
-    Figure; see ``plot``); returns the matplotlib Figure."""
+    """Two panels (left body, right body; one body: displacement, velocity) sharing the
+    followed parameter, d by default (``ax``: 2 Axes in that order, or a Figure; see
+    ``plot``); returns the matplotlib Figure."""
     from matplotlib.lines import Line2D
 
-    d = ds["d"].values
+    p = str(ds.attrs.get("parameter", "d"))
+    sym = PARAMETER_TEX.get(p, p)
+    pair = "section_x2" in ds
+    d = ds[p].values
     names = [str(n) for n in ds["branch_name"].values]
     order = solution_order(ds) or names
     styles = point_styles(ds)
@@ -55,7 +66,8 @@ def draw_bifurcation(ds, ax=None):
         kind, name = key
         return (kind == "solution", drawn.index(name) if name in drawn else 0)
 
-    for ax, var in zip(axs, ("section_x1", "section_x2"), strict=True):
+    variables = ("section_x1", "section_x2") if pair else ("section_x1", "section_v1")
+    for ax, var in zip(axs, variables, strict=True):
         pts = ds[var].values.reshape(len(names) * len(d), -1)  # (branch * d, point)
         dd = np.tile(d, len(names))
         for (kind, name), rows in sorted(groups.items(), key=lambda g: rank(g[0])):
@@ -81,8 +93,8 @@ def draw_bifurcation(ds, ax=None):
         at = float(ds["destroyed_at"].values[i])
         falls = str(ds["falls_to"].values[i])
         fate = (f"falls to {latex_of(falls)}" if falls else
-                f"no non-impacting solution reached by $d = {d[-1]:g}$")
-        text = (f"destroyed at $d = {at:.4f}$ (dashed), {fate}" if np.isfinite(at) else
+                f"no non-impacting solution reached by ${sym} = {d[-1]:g}$")
+        text = (f"destroyed at ${sym} = {at:.4f}$ (dashed), {fate}" if np.isfinite(at) else
                 "not destroyed in the range")
         handles.append(Line2D([], [], color=colour_of(name, order), marker="o", ls="--",
                               label=f"{latex_of(name)}: {text}"))
@@ -93,19 +105,23 @@ def draw_bifurcation(ds, ax=None):
     if "transient" in kinds:
         handles.append(Line2D([], [], color=TRANSIENT, marker="+", ls="",
                               label="no period found (transient) or diverged"))
-    axs[0].set_ylabel("$x_1(t_0 + nT)$ (left body)")
-    axs[1].set_ylabel("$x_2(t_0 + nT)$ (right body)")
-    axs[1].set_xlabel("$d$")
+    if pair:
+        axs[0].set_ylabel("$x_1(t_0 + nT)$ (left body)")
+        axs[1].set_ylabel("$x_2(t_0 + nT)$ (right body)")
+    else:
+        axs[0].set_ylabel("$x(t_0 + nT)$")
+        axs[1].set_ylabel("$\\dot x(t_0 + nT)$")
+    axs[1].set_xlabel(f"${sym}$")
     for k, ax in enumerate(axs):
         panel_letter(ax, k)
     # below the panels: a legend inside would hide the branches near the top
     fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncols=2,
-               title="each point in the colour of the solution it is on at that $d$",
+               title=f"each point in the colour of the solution it is on at that ${sym}$",
                title_fontsize=8)
     if d[0] > d[-1]:
-        axs[1].set_xlim(d[0], d[-1])  # d decreases to the right, as it is followed
+        axs[1].set_xlim(d[0], d[-1])  # decreasing to the right, as it is followed
     step = abs(float(d[1] - d[0])) if len(d) > 1 else 0.0
-    fig.suptitle(f"{ds.attrs.get('model')} pair followed in $d$ from {d[0]:g} to "
-                 f"{d[-1]:g} (step {step:g}), {start_text(ds)}\n"
-                 + parameter_text(ds, exclude=("d",)), fontsize=9)
+    fig.suptitle(f"{ds.attrs.get('model')} {'pair' if pair else 'body'} followed in ${sym}$ "
+                 f"from {d[0]:g} to {d[-1]:g} (step {step:g}), {start_text(ds)}\n"
+                 + parameter_text(ds, exclude=(p,)), fontsize=9)
     return root_figure(fig)

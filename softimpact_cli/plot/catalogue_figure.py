@@ -7,6 +7,7 @@ from math import ceil
 import numpy as np
 
 from ..analysis.labels import latex_of
+from ..config.axes import COUPLING_AXES
 from .common import (
     is_figure,
     new_figure,
@@ -98,7 +99,7 @@ def draw_catalogue(ds, ax=None):
         for k, a in enumerate([ax, *combo_axes]):
             panel_letter(a, k, fontsize=10)
     phi = ds.attrs.get("phi")
-    params = parameter_text(ds, exclude=("d", "phi", "k_c", "c_c"))
+    params = parameter_text(ds, exclude=COUPLING_AXES)
     fig.suptitle(f"{ds.attrs.get('model', '')} catalogue: {params}"
                  + (f", right body's forcing phase $\\varphi = {phase_text(float(phi))}$"
                     if phi is not None and combos else "")

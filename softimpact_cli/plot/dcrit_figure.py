@@ -8,6 +8,7 @@ from collections import deque
 import numpy as np
 
 from ..analysis.labels import latex_of
+from ..config.axes import COUPLING_AXES
 from .common import panel_letter, parameter_text, phase_text, pi_ticks, place_panels, root_figure
 from .palette import colour_of, solution_order
 
@@ -141,5 +142,5 @@ def draw_dcrit(ds, combination: str | None = None, ax=None):
             panel_letter(a, k)
     # d_crit depends on the uncoupled orbits only: not on d, phi (the axis), k_c, c_c, t0
     fig.suptitle(f"{ds.attrs.get('model')} pair (uncoupled orbits): "
-                 + parameter_text(ds, exclude=("d", "phi", "k_c", "c_c")), fontsize=9)
+                 + parameter_text(ds, exclude=COUPLING_AXES), fontsize=9)
     return root_figure(fig)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.labels import latex_of
+from ..config.axes import COUPLING_AXES
 from ..report.info import design_summary
 from .common import (
     panel_letter,
@@ -162,7 +163,7 @@ def _bars(ax, s: dict) -> None:
 
 def _robustness(ax, s: dict, relative: float) -> None:
     best = s["best"]
-    for j, axis in enumerate(("d", "phi", "k_c", "c_c")):
+    for j, axis in enumerate(COUPLING_AXES):
         rows = sorted([p for p in s["robustness"] if p["parameter"] == axis],
                       key=lambda p: p["step"])
         rows = rows[: len(rows) // 2] + [{**best, "step": 0}] + rows[len(rows) // 2:] \

@@ -16,8 +16,9 @@ from typing import Any
 import numpy as np
 
 from ..analysis.stability import wilson_interval
-from ..config import GRID_AXES, ConfigError
-from ..sweep.result import grid_dims, grid_point
+from ..config import ConfigError
+from ..config.axes import every_axis
+from ..sweep.result import grid_axes, grid_dims, grid_point
 
 
 def comparable(kinds: Mapping[str, Any]) -> tuple[str, ...]:
@@ -71,7 +72,7 @@ def _names(ds, dims: list[str]) -> np.ndarray:
 def compare_sweeps(a, b, name_a: str, name_b: str) -> dict:
     """Label agreement point by point and share differences per solution and grid point."""
     _same(list(grid_dims(a)), list(grid_dims(b)), "grid layout", name_a, name_b)
-    for axis in GRID_AXES:
+    for axis in grid_axes(a):
         _same(a[axis].values, b[axis].values, f"grid axis {axis}", name_a, name_b)
     ic_dims = str(a.attrs.get("ic_dims", "")).split()
     _same(ic_dims, str(b.attrs.get("ic_dims", "")).split(), "initial-condition layout",
@@ -204,7 +205,7 @@ def sweep_comparison_text(report: dict, max_points: int) -> list[str]:
     width = max([len(s) for p in report["points"] for s in p["shares"]] + [8])
     for point in report["points"][:max_points]:
         where = ", ".join(f"{k}={point[k]:.6g}" if isinstance(point[k], float)
-                          else f"{k}={point[k]}" for k in GRID_AXES)
+                          else f"{k}={point[k]}" for k in every_axis() if k in point)
         lines.append(f"{where} ({point['n']} trajectories)")
         lines.append(f"  {'solution':{width}s} {'A':>6s} {'95% interval':>15s} "
                      f"{'B':>6s} {'95% interval':>15s} {'B - A':>7s}")

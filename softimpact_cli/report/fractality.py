@@ -8,6 +8,8 @@ import math
 
 import numpy as np
 
+from ..config.axes import GRID_AXES
+
 LN2 = math.log(2.0)
 
 
@@ -65,7 +67,7 @@ def fractality_summary(ds) -> dict:
     points = []
     for i in range(ds.sizes["point"]):
         p = ds.isel(point=i)
-        where = {a: float(p[a]) for a in ("d", "phi", "k_c", "c_c", "t0") if a in p.coords}
+        where = {a: float(p[a]) for a in GRID_AXES if a in p.coords}
         n_basins = int(p["n_basins"])
         sbb = p["S_bb"].values
         shares = {str(name): float(s) for name, s in zip(ds["label_name"].values,
@@ -119,7 +121,7 @@ def fractality_lines(ds) -> list[str]:
            f"{ds.attrs.get('radii', '')} cells (95% fit interval); Wada by merging up to "
            f"r = {ds.attrs.get('wada_max_radius')} cells, tol {ds.attrs.get('wada_tol')}"]
     for p in summary:
-        axes = ("d", "phi", "k_c", "c_c", "t0") if int(ds.attrs.get("bodies", 2)) == 2 \
+        axes = GRID_AXES if int(ds.attrs.get("bodies", 2)) == 2 \
             else ("t0",)  # one body: no coupling
         where = ", ".join(f"{a}={p[a]:.6g}" for a in axes if a in p)
         shares = ", ".join(f"{k} {v:.3f}" for k, v in p["label_shares"].items())

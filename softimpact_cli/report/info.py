@@ -7,10 +7,10 @@ import math
 import numpy as np
 
 from ..analysis.stability import basin_stability
-from ..config import GRID_AXES
+from ..config.axes import COUPLING_AXES
 from ..kernels import method_traits
 from ..kernels.codes import CLASSIFIED_BY, STATUS_TABLE
-from ..sweep.result import grid_dims, grid_point  # noqa: F401  (named here too)
+from ..sweep.result import grid_axes, grid_dims, grid_point  # noqa: F401  (named here too)
 from .nonperiodic import nonperiodic_summary
 from .verification import verification_summary
 
@@ -218,16 +218,16 @@ def compare_shares(plane, stability) -> list[dict]:
 
     Points match on (d, phi, k_c, c_c) to 1e-9; t0 of both is reported.
     """
-    a = {tuple(round(p[k], 9) for k in GRID_AXES[:4]): p for p in sweep_summary(plane)["points"]}
+    a = {tuple(round(p[k], 9) for k in COUPLING_AXES): p for p in sweep_summary(plane)["points"]}
     rows = []
     for point in stability_summary(stability):
-        key = tuple(round(point[k], 9) for k in GRID_AXES[:4])
+        key = tuple(round(point[k], 9) for k in COUPLING_AXES)
         if key not in a:
             continue
         names = sorted(set(a[key]["fractions"]) | {g for g in point["shares"]
                                                     if "(" not in g})
         rows.append({
-            **{k: point[k] for k in GRID_AXES[:4]},
+            **{k: point[k] for k in COUPLING_AXES},
             "t0_plane": a[key]["t0"], "t0_stability": point["t0"],
             "shares": {n: {"plane": a[key]["fractions"].get(n, 0.0),
                            "stability": point["shares"].get(n, {}).get("share", 0.0),
@@ -259,7 +259,7 @@ def design_point(ds, i: int) -> dict:
     exists = int(ds["target_exists"].values[i])
     mult = ds["multiplier_re"].values[i] + 1j * ds["multiplier_im"].values[i]
     return _finite({
-        **{a: float(ds[f"point_{a}"].values[i]) for a in ("d", "phi", "k_c", "c_c")},
+        **{a: float(ds[f"point_{a}"].values[i]) for a in COUPLING_AXES},
         "n": int(ds["n_samples"].values[i]),
         "share": float(share[t]), "ci95": [float(lo[t]), float(hi[t])],
         "impacting_share": float(share[m]), "impacting_ci95": [float(lo[m]), float(hi[m])],

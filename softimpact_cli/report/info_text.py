@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config.axes import COUPLING_AXES, every_axis
 from .info import format_catalogue
 from .nonperiodic import nonperiodic_lines
 from .verification import verification_lines
@@ -15,9 +16,9 @@ from .verification import verification_lines
 # parameters a kind varies or does not use, left out of its "parameters" line
 NOT_FIXED = {
     "bifurcation": ("d",),
-    "dcrit": ("d", "phi", "k_c", "c_c"),
+    "dcrit": COUPLING_AXES,
     "catalogue": ("d", "k_c", "c_c"),
-    "design": ("d", "phi", "k_c", "c_c"),
+    "design": COUPLING_AXES,
 }
 SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
                    "combinations", "branches", "d_crit", "orbit", "variables", "target",
@@ -57,7 +58,7 @@ def _is_number(v: str) -> bool:
 
 
 def _where(point: dict) -> str:
-    return ", ".join(f"{a}={text(point[a])}" for a in ("d", "phi", "k_c", "c_c", "t0"))
+    return ", ".join(f"{a}={text(point[a])}" for a in every_axis() if a in point)
 
 
 def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config.axes import COUPLING_AXES
 from ..sweep.result import grid_dims, grid_point
 
 
@@ -37,7 +38,7 @@ def nonperiodic_lines(rows: list[dict]) -> list[str]:
            "cells, Lyapunov exponents +- standard error (1/time)"]
     for r in rows:
         where = ", ".join(f"{k}={v:.6g}" for k, v in r["at"].items()
-                          if k in ("d", "phi", "k_c", "c_c") and isinstance(v, float))
+                          if k in COUPLING_AXES and isinstance(v, float))
         spectrum = ", ".join(f"{v:+.4f}+-{e:.4f}" for v, e in zip(r["exponents"],
                                                                   r["stderr"], strict=True))
         out.append(f"  {r['name']:{width}s}  {where}: {r['members']} trajectories, "

@@ -66,13 +66,19 @@ def _percent(share: float) -> str:
 
 def verification_line(attrs: Mapping[str, Any]) -> str | None:
     """One line, e.g. ``label error (verified, 800 of 250000 rerun at dopri5, rtol 1e-10,
-    ...): 0 / 800 disagree, 95% interval [0.00%, 0.48%] <= 0.50%``; None when the result
-    carries no verification."""
+    ...): 0 / 800 disagree, 95% interval [0.00%, 0.48%] <= 0.50%``, or for a sample in
+    which none disagreed that is too small to reach the threshold, the bound it gives
+    (``label error <= 3.70% (95%), measured on 100 of 10000 trajectories rerun at ...:
+    none disagreed``); None when the result carries no verification."""
     s = verification_summary(attrs)
     if s is None:
         return None
     if "sample" not in s:
         return f"label error: {s['status']}"
+    if s["status"] == "bounded":  # none disagreed: the bound is the result
+        return (f"label error <= {_percent(s['ci95_high'])} (95%), measured on "
+                f"{s['sample']} of {s['total']} trajectories rerun at {s['settings']}: none "
+                "disagreed")
     within = "<=" if s["ci95_high"] <= s["threshold"] else ">"
     redone = (f"; redone {s['rungs']}x, now at {s['run_settings']}" if s.get("rungs")
               else "")

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..analysis.labels import parse_label
 from ..analysis.stability import basin_stability, wilson_interval
+from ..config.axes import COUPLING_AXES
 from ..report.info import sweep_summary
 from ..sweep.result import grid_dims
 
@@ -119,7 +120,7 @@ def stability_points(ds) -> list[dict]:
     points = []
     for k, index in enumerate(np.ndindex(*count.shape[:-1])):
         point = {a: float(v) for a, v in sweep_summary(ds)["points"][k].items()
-                 if a in ("d", "phi", "k_c", "c_c") or (a == "t0" and v != "random")}
+                 if a in COUPLING_AXES or (a == "t0" and v != "random")}
         if ds.attrs.get("t0_mode") == "random":
             point["t0"] = "random"
         point["counts"] = {g: int(count[index][j]) for j, g in enumerate(groups)

@@ -14,7 +14,8 @@ from ..analysis.catalogue import Catalogue, label_orbit
 from ..analysis.engine import KnownOrbits, Problem, RecurrenceCells, classify_state
 from ..analysis.labels import code_of
 from ..analysis.section_follow import FAILED, PERIODIC, RECURRENT, follow_section
-from ..config import GRID_AXES, Grid, IntegratorSettings
+from ..config import Grid, IntegratorSettings
+from ..config.axes import catalogue_key
 from ..kernels.codes import (
     BY_CELLS,
     BY_KNOWN_ORBIT,
@@ -53,9 +54,11 @@ class SweepContext:
     """Everything a worker needs, shared by all chunks.
 
     states : (n_ic, dim) initial states; t0 : (n_ic,) start times per sample, or None to
-    take them from the grid's t0 axis; catalogues : one per phi value of the grid;
-    known : per phi value, the stable non-impacting orbits a trajectory may be captured
-    by, as (section points (q, dim) in time order, d_crit) pairs (None: no capture).
+    take them from the grid's t0 axis; catalogues : one per distinct value of the
+    catalogue's parameters over the grid (``config.axes.catalogue_key``: phi, and the
+    body's parameters when they are swept); known : per catalogue key, the stable
+    non-impacting orbits a trajectory may be captured by, as (section points (q, dim) in
+    time order, d_crit) pairs (None: no capture).
     """
 
     model: str
@@ -79,19 +82,23 @@ class SweepContext:
             return None
         d = float(values.get("d", np.inf))
         keep = []
-        for points, d_crit in self.known.get(float(values.get("phi", 0.0)), ()):
+        for points, d_crit in self.known.get(self.catalogue_key(values), ()):
             radius = s.capture_tol * max(1.0, float(np.max(np.abs(points))))
             if d_crit + CAPTURE_MARGIN * radius < d:
                 keep.append((points, d_crit - d))
         return KnownOrbits.from_orbits([o for o, _ in keep], [g for _, g in keep],
                                        s.capture_tol, s.capture_hits, self.states.shape[1])
 
+    def catalogue_key(self, values: dict) -> tuple[float, ...]:
+        """The key of ``catalogues`` and ``known`` that serves these parameter values."""
+        return catalogue_key(get_system(self.model, self.bodies), values)
+
     def point_values(self, point: int) -> tuple[dict, float]:
         """(parameter values, grid t0) of grid point number ``point``."""
         axes = self.grid.point(point)
         values = dict(self.values)
-        for axis in GRID_AXES[:4]:
-            if axis in self.grid.swept:
+        for axis in self.grid.swept:
+            if axis != "t0":
                 values[axis] = axes[axis]
         return values, axes["t0"]
 
@@ -130,7 +137,7 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
         if point != current:
             values, grid_t0 = ctx.point_values(point)
             problem = Problem(system, values, s)
-            catalogue = ctx.catalogues[float(values.get("phi", 0.0))]
+            catalogue = ctx.catalogues[ctx.catalogue_key(values)]
             known = ctx.known_orbits(values)
             current = point
         if s.cell_size > 0.0 and (k == 0 or ic == 0 or flat % CELL_BLOCK == 0):

@@ -23,6 +23,7 @@ from ..analysis.catalogue import (
 )
 from ..analysis.design import AXES, NoRegion, design
 from ..config import ConfigError, Grid, Scene, forcing_period
+from ..config.axes import catalogue_key
 from ..store.catalogues import scene_body_attractors
 from ..store.provenance import provenance
 from .chunks import CELL_BLOCK
@@ -78,7 +79,8 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
                 catalogues[float(p["phi"])] = pair_catalogue(scene, search, float(p["phi"]))
         axes = {x: tuple(float(p[x]) for p in points) for x in AXES}
         grid = Grid({**axes, "t0": (0.0,) * len(points)}, AXES, panels=True)
-        batch = {float(p["phi"]): catalogues[float(p["phi"])] for p in points}
+        batch = {catalogue_key(scene.system, {**scene.values, "phi": float(p["phi"])}):
+                 catalogues[float(p["phi"])] for p in points}
         context = sweep_context(replace(scene, grid=grid), batch, names, t0_per_sample)
         context = replace(context, states=context.states[start:stop],
                           t0=context.t0[start:stop])

@@ -17,7 +17,8 @@ import numpy as np
 import xarray as xr
 
 from ..config import Scene
-from ..config.sweep import GRID_AXES, Grid, InitialConditions
+from ..config.axes import GRID_AXES
+from ..config.sweep import Grid, InitialConditions
 from ..store.provenance import history_line, provenance
 from .chunks import RESULT_FIELDS
 from .executors import make_executor

@@ -8,7 +8,8 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.labels import latex_of, name_of
-from ..config import GRID_AXES, GRID_UNITS, Scene, forcing_period
+from ..config import Scene, forcing_period
+from ..config.axes import GRID_AXES, axis_units
 from .chunks import RESULT_FIELDS
 
 ATTRIBUTES = {
@@ -59,7 +60,8 @@ def t0_attrs(t0_values, period: float, random: bool, swept: bool) -> dict:
 
 def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
                   names: tuple[str, ...], t0_per_sample: np.ndarray | None) -> xr.Dataset:
-    """Dataset with dims (d, phi, k_c, c_c, t0, *initial-condition dims).
+    """Dataset with dims (*swept model parameters, d, phi, k_c, c_c, t0,
+    *initial-condition dims) (``Grid.dims``).
 
     ``arrays``: flat per-trajectory arrays (RESULT_FIELDS) in plan order; ``orbits``:
     {(grid point, code): (flat index, section points)} with the first occurrence kept.
@@ -69,9 +71,11 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     dims = grid.dims + ic.dims
     shape = grid.shape + ic.shape
     along = ("panel",) if grid.panels else None
-    coords: dict = {a: (along or a, np.array(grid.axes[a]), {"units": GRID_UNITS[a]})
-                    for a in GRID_AXES}
-    period = forcing_period(scene.values)
+    coords: dict = {a: (along or a, np.array(grid.axes[a]), {"units": axis_units(a)})
+                    for a in grid.names}
+    # the forcing period of the scene, or of the first grid point when w is swept (each
+    # point then has its own, 2 pi / w, and starts at t0 = 0: config.sweep.W_SWEPT_T0)
+    period = forcing_period(grid.point(0) if "w" in grid.swept else scene.values)
     if "t0" not in grid.swept and ic.t0 is not None:  # the fixed start actually used
         coords["t0"] = (along or "t0", np.full(len(grid.axes["t0"]), float(ic.t0)),
                         coords["t0"][2])
@@ -127,6 +131,8 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
         "forcing_period": period,
         "catalogue_names": "; ".join(names),
     }
+    if grid.parameters:  # model parameters swept besides GRID_AXES (their own dims)
+        attrs["grid_parameters"] = " ".join(grid.parameters)
     if ic.kind == "plane":
         attrs["plane_fixed"] = ", ".join(f"{k}={v}" for k, v in (ic.fixed or {}).items())
     return xr.Dataset(data, coords=coords, attrs=attrs)
@@ -136,8 +142,15 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
 
 
 def grid_dims(ds) -> tuple[str, ...]:
-    """The dims a sweep's grid points span: GRID_AXES, or ("panel",)."""
+    """The dims a sweep's grid points span: its swept model parameters and GRID_AXES, or
+    ("panel",)."""
     return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+
+
+def grid_axes(ds) -> tuple[str, ...]:
+    """Every axis with a value at each grid point: the model parameters the sweep spans
+    besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES."""
+    return tuple(str(ds.attrs.get("grid_parameters", "")).split()) + GRID_AXES
 
 
 def grid_point(ds, index: tuple[int, ...]) -> dict:
@@ -146,7 +159,7 @@ def grid_point(ds, index: tuple[int, ...]) -> dict:
     dims = grid_dims(ds)
     sel = dict(zip(dims, index, strict=True))
     point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
-             for a in GRID_AXES}
+             for a in grid_axes(ds)}
     if ds.attrs.get("t0_mode") == "random":
         point["t0"] = "random"
     return point

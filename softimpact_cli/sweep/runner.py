@@ -5,7 +5,7 @@ from __future__ import annotations
 import datetime as _dt
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -14,6 +14,7 @@ import xarray as xr
 from ..analysis.catalogue import Catalogue, catalogue_dataset, extend_catalogue, require_attractors
 from ..analysis.critical_distance import critical_distance, uncoupled_pair
 from ..config import ConfigError, Scene, forcing_period
+from ..config.axes import catalogue_axes, catalogue_key
 from ..store import open_result
 from ..store.catalogues import scene_body_attractors
 from ..store.lock import output_lock
@@ -28,25 +29,48 @@ from .second_stage import relabel, unpack
 
 
 def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ...]]:
-    """The one-body catalogue, extended to the right body at every phi of the grid.
+    """The one-body catalogue, extended to the right body at every phi of the grid; when
+    the grid sweeps a body parameter (``config.axes.catalogue_axes``), one search per
+    distinct value of those, since the attractors themselves change.
 
-    Returns ({phi: Catalogue}, names in code order).
+    Returns ({catalogue key: Catalogue} in grid order, names in code order: those of the
+    first, then any new name of the others, so that a name has one code throughout).
     """
     system = scene.system
     check_bodies(system.bodies, "prepare_catalogues (a body or a pair's combinations)")
-    search = scene_body_attractors(scene, progress)
+    searches = {}  # body parameters -> the one-body search there
     catalogues = {}
-    phis = scene.grid.distinct("phi") if system.bodies == 2 else (0.0,)
-    for phi in phis:
-        values = {**scene.values, "phi": phi} if system.bodies == 2 else dict(scene.values)
-        catalogues[float(phi)] = extend_catalogue(system, values, scene.integrator, *search)
-    names = next(iter(catalogues.values())).names
-    return catalogues, names
+    for values in catalogue_points(scene):
+        key = catalogue_key(system, values)
+        if key in catalogues:
+            continue
+        body = tuple(float(values[a]) for a in catalogue_axes(system) if a != "phi")
+        if body not in searches:
+            at = replace(scene, values={**scene.values, **values})
+            searches[body] = scene_body_attractors(at, progress)
+        catalogues[key] = extend_catalogue(system, values, scene.integrator, *searches[body])
+    names: dict[str, None] = {}
+    for cat in catalogues.values():
+        names.update(dict.fromkeys(cat.names))
+    return catalogues, tuple(names)
+
+
+def catalogue_points(scene: Scene):
+    """The scene's parameter values at each grid point (only the axes a catalogue depends
+    on need differ; in grid order, repeats included)."""
+    grid = scene.grid
+    moving = [a for a in grid.swept if a in catalogue_axes(scene.system)]
+    if not moving:  # one catalogue (the common case: a pair over d, k_c, c_c or t0)
+        yield dict(scene.values)
+        return
+    for i in range(grid.size):
+        point = grid.point(i)
+        yield {**scene.values, **{a: point[a] for a in moving}}
 
 
 def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
-    """Per phi, the stable non-impacting orbits a trajectory may be captured by, each as
-    (section points (q, dim) in time order, d_crit); None when capture is off.
+    """Per catalogue key, the stable non-impacting orbits a trajectory may be captured
+    by, each as (section points (q, dim) in time order, d_crit); None when capture is off.
 
     One body: every stable attractor (d_crit = -inf, there is no stop). A pair: every
     combination of two stable attractors with its critical distance, located on the flow
@@ -57,13 +81,15 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
         return None
 
     check_bodies(scene.system.bodies, "capturable_orbits (d_crit of a pair's x1 - x2 - d)")
+    axes = catalogue_axes(scene.system)
     known = {}
-    for phi, cat in catalogues.items():
+    for key, cat in catalogues.items():
         if scene.system.bodies == 1:
-            known[phi] = [(a.points, -np.inf) for a in cat.attractors if a.stable]
+            known[key] = [(a.points, -np.inf) for a in cat.attractors if a.stable]
             continue
-        problem = uncoupled_pair(scene.system, dict(scene.values), phi)
-        known[phi] = [(c.orbit, critical_distance(problem, c.orbit[0], len(c.orbit), 256)[0])
+        values = {**scene.values, **dict(zip(axes, key, strict=True))}
+        problem = uncoupled_pair(scene.system, values, values["phi"])
+        known[key] = [(c.orbit, critical_distance(problem, c.orbit[0], len(c.orbit), 256)[0])
                       for c in cat.combinations if c.left.stable and c.right.stable]
     return known
 

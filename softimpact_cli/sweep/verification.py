@@ -9,8 +9,10 @@ share that disagrees gets a 95% Wilson interval ``[low, high]``; with ``threshol
 [verification]:
 
 - ``high <= threshold``: "verified";
-- no disagreement, but ``high > threshold``: "inconclusive" (the sample is too small to
-  bound the error below the threshold; nothing is redone: there is nothing to fix);
+- no disagreement, but ``high > threshold``: "bounded" (the result is reported as what it
+  is, a bound: "label error <= 3.70% (95%), measured on 100 reruns"; nothing is redone,
+  there is nothing to fix, and nothing is noted: a clean run reads clean. The sample
+  that would bound the error at the threshold is :func:`sample_for_threshold`);
 - disagreements and ``high > threshold``: with ``tighten``, the whole sweep is redone on
   the next rung of :func:`ladder` and verified again, at most MAX_RUNGS times. Which rung
   comes first, the sample says: it is also rerun alone at the sweep's own settings without
@@ -30,6 +32,7 @@ the result (``RESULT.h5.tighter1`` ...; resumable like any sweep) and replace it
 from __future__ import annotations
 
 import json
+import math
 import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
@@ -38,7 +41,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..analysis.stability import wilson_interval
+from ..analysis.stability import Z95, wilson_interval
 from ..config import IntegratorSettings, Scene, VerificationSettings
 from ..store import add_attributes, open_result, update_attributes, write_result
 from ..store.lock import output_lock
@@ -49,8 +52,8 @@ from .executors import make_executor
 from .pilot import choose_tolerance, scene_as_run
 from .runner import refuse_existing, run_sweep
 
-VERIFIED, INCONCLUSIVE, TIGHTENED, OVER = "verified", "inconclusive", "tightened", \
-    "over threshold"
+VERIFIED, BOUNDED, TIGHTENED, OVER = "verified", "bounded", "tightened", "over threshold"
+INCONCLUSIVE = "inconclusive"  # what BOUNDED was called in results written before it
 PENDING = ("not verified (interrupted while verifying; `softimpact sweep SCENE -o RESULT "
            "--resume` verifies it)")
 MAX_RUNGS = 2
@@ -122,10 +125,18 @@ class Attempt:
         return self.disagreements / self.sample if self.sample else 0.0
 
     def outcome(self, threshold: float) -> str:
-        """VERIFIED, INCONCLUSIVE or OVER (see the module docstring)."""
+        """VERIFIED, BOUNDED or OVER (see the module docstring)."""
         if self.ci_high <= threshold:
             return VERIFIED
-        return INCONCLUSIVE if self.disagreements == 0 else OVER
+        return BOUNDED if self.disagreements == 0 else OVER
+
+
+def sample_for_threshold(threshold: float) -> int:
+    """The fewest reruns whose zero disagreements put the upper end of the 95% Wilson
+    interval at or below ``threshold`` (a share): z^2 / (n + z^2) <= threshold, i.e.
+    n >= z^2 (1 - threshold) / threshold (765 for 0.5%)."""
+    n = math.ceil(Z95 * Z95 * (1.0 - threshold) / threshold)
+    return n if Z95 * Z95 / (n + Z95 * Z95) <= threshold else n + 1  # rounding
 
 
 def check_result(scene: Scene, ds: xr.Dataset, sample: int, seed: int, executor=None
@@ -236,7 +247,7 @@ def _numbers(a: Attempt) -> str:
 
 
 def final_status(attempts: list[Attempt], threshold: float) -> str:
-    """VERIFIED, INCONCLUSIVE or OVER for one attempt; TIGHTENED or OVER after redoing."""
+    """VERIFIED, BOUNDED or OVER for one attempt; TIGHTENED or OVER after redoing."""
     last = attempts[-1].outcome(threshold)
     if len(attempts) == 1:
         return last
@@ -249,10 +260,12 @@ def status_message(attempts: list[Attempt], threshold: float, tighten: bool) -> 
     limit = _percent(threshold)
     if status == VERIFIED:
         return f"the label error is below {limit} (95% upper bound)"
-    if status == INCONCLUSIVE:
-        return (f"no label changed, but a sample of {last.sample} bounds the error only "
-                f"below {_percent(last.ci_high)}, not {limit}; raise [verification] "
-                "share or min_sample (or --check N) for a tighter bound")
+    if status == BOUNDED:
+        needed = sample_for_threshold(threshold)
+        return (f"no label changed in {last.sample} reruns: the label error is at most "
+                f"{_percent(last.ci_high)} (95% upper bound); {needed} reruns without a "
+                f"change would bound it at {limit} (--check {needed}, or [verification] "
+                f"min_sample = {needed})")
     if status == TIGHTENED:
         return (f"the first run was over {limit}; redone {len(attempts) - 1} time(s) at "
                 f"tighter settings, now {last.outcome(threshold)}")

@@ -35,7 +35,7 @@ path = "{out}"
 
 
 @pytest.mark.parametrize("extra, message", [
-    ('parameter = "d"', "[analysis] parameter: must be one of 'F', 'w'"),
+    ('parameter = "d"', "[analysis] parameter: must be one of 'c', 'k1', 'k2', 'F', 'w'"),
     ("low = 1.5", "[analysis] low: the branch starts at the scene's F = 1.0"),
     ("high = 0.1", "[analysis] high: must be > low"),
     ("min_step = 0.1", "[analysis] step: must lie in [min_step, max_step]"),

@@ -69,7 +69,7 @@ def test_capture_gives_the_labels_of_full_convergence_in_fewer_periods(model, d,
 
 def test_only_combinations_clear_of_the_stop_are_known():
     ctx, scene = context(d=6.0)  # phi = 0: d_crit is 0 (equal orbits) or 11.27
-    entries = ctx.known[0.0]
+    entries = ctx.known[ctx.catalogue_key(scene.values)]
     d_crits = sorted(g for _, g in entries)
     assert len(entries) == 4 and d_crits[0] == pytest.approx(0.0, abs=1e-8)
     assert d_crits[-1] > 11.0
@@ -111,7 +111,7 @@ def test_contact_blocks_capture():
     """With a stop that the known orbit would cross (d below its d_crit), a trajectory
     near that orbit keeps touching and must not be captured by it."""
     ctx, scene = context(d=22.0)
-    d_crit, orbit = max((g, o) for o, g in ctx.known[0.0])
+    d_crit, orbit = max((g, o) for o, g in ctx.known[ctx.catalogue_key(scene.values)])
     problem = Problem(scene.system, {**scene.values, "d": d_crit - 1.0}, scene.integrator)
     known = KnownOrbits.from_orbits([orbit], [1.0], 1e-2, 3, 4)
     cls = classify_state(problem, orbit[0], 0.0, known)

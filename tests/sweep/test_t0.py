@@ -5,6 +5,7 @@ import pytest
 
 from softimpact_cli.analysis.catalogue import label_orbit, sample_states
 from softimpact_cli.analysis.engine import Problem, classify_state, flow, record_trajectory
+from softimpact_cli.config.axes import catalogue_key
 from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import prepare_catalogues, run_sweep
 from softimpact_cli.systems import get_system
@@ -96,7 +97,8 @@ def test_random_t0_is_stored_per_sample_and_labels_match_direct_runs(tmp_path):
     for i in (0, 7, 23):
         cls = classify_state(pr, ds["initial_state"].values[i], t0[i])
         if cls.status == 0:
-            label = label_orbit(catalogues[5.28], cls.orbit, cls.impacting)
+            label = label_orbit(catalogues[catalogue_key(scene.system, scene.values)],
+                                cls.orbit, cls.impacting)
             assert ds["label_name"].values[list(ds["label_code"].values).index(
                 int(ds["label"].values.ravel()[i]))] == label.name
 

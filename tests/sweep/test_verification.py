@@ -57,13 +57,23 @@ def attempt(disagreements, sample, threshold_free=True):
 
 def test_decision_rule():
     assert attempt(0, 800).outcome(0.005) == v.VERIFIED  # upper 0.48%
-    assert attempt(0, 50).outcome(0.005) == v.INCONCLUSIVE  # upper 7.1%: sample too small
+    assert attempt(0, 50).outcome(0.005) == v.BOUNDED  # upper 7.1%: reported as a bound
     assert attempt(1, 2000).outcome(0.005) == v.VERIFIED  # one change, bound still low
     assert attempt(3, 50).outcome(0.005) == v.OVER
     assert v.final_status([attempt(3, 50), attempt(0, 50)], 0.005) == v.TIGHTENED
     assert v.final_status([attempt(3, 50), attempt(2, 50)], 0.005) == v.OVER
-    assert "bounds the error only below 7.13%" in v.status_message([attempt(0, 50)], 0.005,
-                                                                    True)
+    assert "the label error is at most 7.13% (95% upper bound); 765 reruns" in \
+        v.status_message([attempt(0, 50)], 0.005, True)
+
+
+@pytest.mark.parametrize("threshold", [0.005, 0.01, 0.001, 0.2])
+def test_the_sample_for_a_threshold_is_the_fewest_that_bound_it(threshold):
+    """Zero disagreements in ``sample_for_threshold`` reruns verify; one rerun fewer
+    does not (765 for the default 0.5%)."""
+    n = v.sample_for_threshold(threshold)
+    assert attempt(0, n).outcome(threshold) == v.VERIFIED
+    assert attempt(0, n - 1).outcome(threshold) == v.BOUNDED
+    assert v.sample_for_threshold(0.005) == 765
 
 
 def test_ladder_turns_cells_and_capture_off_first_then_tolerances():
@@ -136,13 +146,22 @@ def test_mislabel_without_tighten_is_over_threshold_and_warned(tmp_path):
     assert strict.exit_code == 3, strict.output
 
 
-def test_clean_run_follows_the_rule(tmp_path):
+def test_clean_run_reads_clean_with_the_default_settings(tmp_path):
+    """None of the default sample disagreed: the line states the bound it gives, and
+    nothing is noted or warned (the demo used to end on "label error inconclusive")."""
     result, out = sweep_cli(tmp_path, PLANE)
     assert result.exit_code == 0, result.output
     ds = si.open_result(out)
     assert ds.attrs["verify_sample"] == 50 and ds.attrs["verify_disagreements"] == 0
-    assert ds.attrs["verify_status"] == v.INCONCLUSIVE  # 0 / 50 bounds only below 7.1%
-    assert "softimpact: note: label error inconclusive" in result.output
+    assert ds.attrs["verify_status"] == v.BOUNDED  # 0 / 50 bounds it below 7.13%
+    assert "label error <= 7.13% (95%), measured on 50 of 256 trajectories rerun at auto, " \
+        "rtol 1e-10" in result.output
+    assert "none disagreed" in result.output
+    assert "note" not in result.output and "warning" not in result.output
+    assert "inconclusive" not in result.output
+    info = CliRunner().invoke(main, ["info", str(out)])
+    assert "label error <= 7.13% (95%), measured on 50 of 256" in info.output
+    assert "765 reruns without a change would bound it at 0.50% (--check 765" in info.output
     loose = PLANE + "[verification]\nthreshold = 0.1\n"
     result, out = sweep_cli(tmp_path, loose, "--overwrite")
     assert si.open_result(out).attrs["verify_status"] == v.VERIFIED
@@ -152,6 +171,18 @@ def test_clean_run_follows_the_rule(tmp_path):
     report = json.loads(CliRunner().invoke(main, ["info", str(out), "--json"]).output)
     assert report["verification"]["status"] == v.VERIFIED
     assert report["verification"]["ci95_high"] == pytest.approx(0.071348, abs=1e-6)
+
+
+def test_disagreements_within_the_threshold_are_noted(tmp_path):
+    """Some labels disagreed but the bound is within the threshold: verified, with a
+    note saying what changed (a clean run has none)."""
+    text = MISLABEL + "[verification]\nthreshold = 0.6\ntighten = false\n"
+    result, out = sweep_cli(tmp_path, text)
+    assert result.exit_code == 0, result.output
+    ds = si.open_result(out)
+    assert ds.attrs["verify_status"] == v.VERIFIED and ds.attrs["verify_disagreements"] > 0
+    assert (f"softimpact: note: {ds.attrs['verify_disagreements']} of 50 rerun labels "
+            "disagreed (") in result.output
 
 
 def test_no_verify_and_disabled_are_recorded(tmp_path):
@@ -191,8 +222,8 @@ def test_a_killed_verification_keeps_the_sweep_and_resume_verifies_it(tmp_path,
     assert kept.attrs["complete"] == 1 and kept.attrs["verify_status"] == v.PENDING
     monkeypatch.undo()
     ds = si.sweep(PLANE, out, workers=1, resume=True)
-    assert ds.attrs["verify_status"] == v.INCONCLUSIVE
-    assert si.open_result(out).attrs["verify_status"] == v.INCONCLUSIVE
+    assert ds.attrs["verify_status"] == v.BOUNDED
+    assert si.open_result(out).attrs["verify_status"] == v.BOUNDED
     np.testing.assert_array_equal(ds["label"].values, kept["label"].values)
 
 
@@ -218,7 +249,8 @@ def test_plot_prints_the_error_line(tmp_path):
     result, out = sweep_cli(tmp_path, PLANE, "--check", "20")
     assert result.exit_code == 0, result.output
     fig = si.plot.basins(si.open_result(out), show_error=True)
-    assert "label error (inconclusive, 20 of 256" in fig._supxlabel.get_text()
+    assert "label error <= 16.11% (95%), measured on 20 of 256" in \
+        fig._supxlabel.get_text()
     drawn = CliRunner().invoke(main, ["plot", "basins", str(out), "-o",
                                       str(tmp_path / "b.png"), "--show-error"])
     assert drawn.exit_code == 0, drawn.output
