@@ -13,7 +13,6 @@ import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
 from matplotlib.figure import Figure
 
 import softimpact_cli as si
@@ -27,9 +26,20 @@ pair = {"system": {"model": "duffing"},
 scene = si.load_scene({**pair, "analysis": {"kind": "trajectory", "state": [8.0, 0.0, -4.0, 0.0],
                                             "periods": 60}})
 
+# What softimpact can compute: every analysis kind with its one-line help.
+print(f"kinds: {len(si.kinds())} ({', '.join(si.kinds())})")
+
 # One trajectory, classified: an xarray.Dataset, no file written.
 trajectory = si.run(scene)
 print(f"trajectory: {trajectory.attrs['outcome']}, period {trajectory.attrs['period']} T")
+
+# The pair as a System at one parameter point: where does one start go (the label a
+# basins sweep gives it)? Other parameter values give a new System; nothing recompiles.
+system = si.System({**pair, "catalogue": {"grid": 4, "random": 20}})
+start = [8.0, 0.0, -4.0, 0.0]
+here, wider = system.classify(start), system.with_(d=8.0).classify(start)
+print(f"classify: {here.label} (period {here.period}) at d = 6, "
+      f"{wider.label} (period {wider.period}) at d = 8")
 
 # The attractors of one body and the pair's combinations at phi = 0.
 catalogue = si.run({"system": {"model": "duffing"}, "coupling": {"phi": 0.0},
@@ -44,11 +54,11 @@ plane = {**pair, "analysis": {"kind": "basins"},
                                 "resolution": [16, 16]},
          "catalogue": {"grid": 4, "random": 20}}
 basins = si.run(plane, workers=1)
-names = dict(zip(basins["label_code"].values.tolist(),
-                 basins["label_name"].values.tolist(), strict=True))
-codes, counts = np.unique(basins["label"].values, return_counts=True)
-shares = {names[int(c)]: n / counts.sum() for c, n in zip(codes, counts, strict=True)}
-print("basin shares: " + ", ".join(f"{k} {v:.2f}" for k, v in shares.items()))
+# ds.si: each label's share of the plane with its 95% Wilson interval, as a table
+shares = basins.si.shares()
+print(shares.to_string(index=False))
+print("basin shares: " + ", ".join(f"{row.label} {row.share:.2f}"
+                                   for row in shares.itertuples() if row.count))
 
 # Figures on your own axes: the basins beside the trajectory's phase portrait.
 fig = Figure(figsize=(10, 5), layout="constrained")

@@ -10,6 +10,13 @@
     fig = si.plot.basins(ds, ax=ax)          # draws on ax, returns its Figure
     si.sweep(scene, "basins.h5", resume=True)  # the resumable result file of the CLI
     fr = si.measure("basins.h5", "fractality.h5")  # basin entropy, alpha, Wada test
+    ds.si.shares()                           # each label's share, 95% interval (accessor.py)
+    si.System(scene).classify([8, 0, -4, 0]) # one start's label (api_system.py)
+    si.kinds()                               # every analysis kind, one help line each
+
+Datasets come in the dim order of their file (``store.layout``: a plane's variables end
+in its second axis, then its first, as ``xarray.open_dataset`` reads them); the figures
+and :func:`measure` take either order.
 
 The command line is a thin layer over these functions: ``softimpact sweep`` shrinks the
 scene with :func:`shrink_scene`, runs it with :func:`sweep`, and ``softimpact plot`` /
@@ -34,18 +41,24 @@ from typing import Any
 
 import xarray as xr
 
-from . import __version__
+from . import (
+    __version__,
+    accessor,  # noqa: F401  (registers ds.si on the datasets handed out)
+)
+from .analysis.attributes import attribute_list
 from .analysis.fractality import fractality, plane_problem
 from .config import ConfigError, Scene, check_writable, result_path
+from .config.space import check_disk, check_memory
 from .config.toml_text import toml_text
+from .kinds import KINDS, sweep_kinds
 from .kinds import get as kind_of
-from .kinds import sweep_kinds
 from .kinds.run import run_scene
 from .kinds.scene import load_scene as load_scene_file
 from .kinds.scene import parse_scene
 from .kinds.scene import quick as quick_scene
-from .store import open_result as read_result
+from .store import open_result as read_store
 from .store import write_result
+from .store.layout import file_order, memory_order
 from .store.lock import output_lock
 from .store.provenance import command_line, history_line, iso_time
 from .store.xarray_dask import install
@@ -54,8 +67,8 @@ from .sweep.executors import make_executor
 from .sweep.pilot import choose_tolerance
 from .sweep.verification import disabled_status, sweep_verified, verify_sweep
 
-__all__ = ["ConfigError", "load_scene", "measure", "open_result", "run", "shrink_scene",
-           "sweep"]
+__all__ = ["ConfigError", "kinds", "load_scene", "measure", "open_result", "run",
+           "shrink_scene", "sweep"]
 
 SceneLike = Scene | str | os.PathLike | Mapping[str, Any]
 
@@ -156,11 +169,25 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     kind = kind_of(sc.analysis.kind)
     bar = _progress(progress, kind.progress_unit)
     if kind.sweep:
-        return _sweep_in_memory(sc, workers, scheduler, chunk_size, echo or _silent, bar,
-                                verify, verify_sample)
+        return _handed_out(_sweep_in_memory(sc, workers, scheduler, chunk_size,
+                                            echo or _silent, bar, verify, verify_sample))
 
-    return run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
-                     echo=echo or _silent)
+    return _handed_out(run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
+                                 echo=echo or _silent))
+
+
+def _handed_out(ds: xr.Dataset) -> xr.Dataset:
+    """A dataset as the API hands it out: in the dim order of its file (a plane's
+    variables end in (second axis, first axis), as ``xarray.open_dataset`` reads them, so
+    that ``ds.label.plot()`` puts the first axis horizontally; ``store.layout``), with
+    the ``ds.si`` accessor registered (``accessor.py``)."""
+    return file_order(ds)
+
+
+def kinds() -> dict[str, str]:
+    """Every analysis kind (``[analysis] kind = ...``) with its one-line help, in the
+    order ``softimpact sweep --help`` lists them (the kinds registry)."""
+    return {name: kind.description for name, kind in KINDS.items()}
 
 
 def _check_verify_sample(verify_sample) -> None:
@@ -214,9 +241,10 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     bar = _progress(progress, kind.progress_unit)
     echo = echo or _silent
     if kind.sweep:
-        return sweep_verified(sc, target, verify=verify, sample=verify_sample, resume=resume,
-                              echo=echo, workers=workers, scheduler=scheduler,
-                              overwrite=overwrite, chunk_size=chunk_size, progress=bar)
+        return _handed_out(sweep_verified(
+            sc, target, verify=verify, sample=verify_sample, resume=resume, echo=echo,
+            workers=workers, scheduler=scheduler, overwrite=overwrite, chunk_size=chunk_size,
+            progress=bar))
     if resume:
         raise ConfigError(f"{sc.source}: resume is for sweeps (kinds "
                           f"{', '.join(sweep_kinds())}); a {kind.name} reruns whole")
@@ -226,14 +254,25 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     with output_lock(target, command_line()):
         if target.exists() and not overwrite:
             raise ConfigError(f"{target}: result exists; pass --overwrite to replace it")
+        if kind.result_bytes is not None:  # a full disk said now, not after the run
+            need = kind.result_bytes(sc)
+            check_memory(need, f"{sc.source}: [analysis]", "reduce what it records")
+            check_disk(target, need)
         ds = run_scene(sc, progress=bar, workers=workers, scheduler=scheduler, echo=echo)
         write_result(ds, target)
-    return ds
+    return _handed_out(ds)
 
 
 def open_result(path: str | os.PathLike) -> xr.Dataset:
-    """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed).
+    """A softimpact result file as an ``xarray.Dataset`` (loaded; the file is closed), in
+    the dim order ``xarray.open_dataset`` gives it (as :func:`run` hands results out).
     ConfigError when it is missing, a directory, or not a softimpact result."""
+    return _handed_out(read_result(path))
+
+
+def read_result(path: str | os.PathLike) -> xr.Dataset:
+    """:func:`open_result` in the package's in-memory dim order (``store.layout``): what
+    the command line's ``plot``, ``info`` and ``compare`` read."""
     p = Path(path)
     if p.is_dir():
         raise ConfigError(f"{path}: is a directory, not a result file")
@@ -242,14 +281,44 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
     try:
         with warnings.catch_warnings():  # a foreign HDF5 file: the reader's warnings are noise
             warnings.simplefilter("ignore")
-            ds = read_result(p)
+            ds = read_store(p)
     except Exception as exc:  # any reader failure is the file's fault, said in one line
         raise ConfigError(f"{path}: not a softimpact result file ({exc.__class__.__name__})"
                           ) from None
     if "analysis" not in ds.attrs or "scene_text" not in ds.attrs:
         raise ConfigError(f"{path}: not a softimpact result file (an HDF5 file without the "
                           "'analysis' and 'scene_text' attributes softimpact writes)")
+    problem = _result_problem(ds)
+    if problem:
+        raise ConfigError(f"{path}: {problem}")
     return ds
+
+
+def _result_problem(ds: xr.Dataset) -> str | None:
+    """What keeps ``ds``, which carries softimpact's attributes, from being a result the
+    commands can read (None: nothing): its ``analysis`` names no kind, its ``complete``
+    is not 0 or 1, or a complete result lacks a variable every result of its kind holds
+    (a hand-made file, or one another tool took variables from)."""
+    analysis = ds.attrs["analysis"]
+    kind = KINDS.get(analysis) if isinstance(analysis, str) else None
+    if kind is None:
+        return (f"not a softimpact result file (its 'analysis' attribute is {analysis!r}, "
+                f"not one of the kinds {', '.join(KINDS)})")
+    complete = ds.attrs.get("complete", 1)
+    if isinstance(complete, bool | str | bytes) or getattr(complete, "shape", ()) != () \
+            or complete not in (0, 1):
+        return (f"not a softimpact result file (its 'complete' attribute is {complete!r}, "
+                "not 0 or 1)")
+    if complete == 0 and not kind.sweep:  # only a sweep is written in parts
+        return (f"not a softimpact result file (its 'complete' attribute is 0, and a "
+                f"{kind.name} result is written whole)")
+    # a sweep over model parameters also has an axis for each (``grid_parameters``)
+    swept = attribute_list(ds.attrs, "grid_parameters") if kind.sweep else []
+    missing = [name for name in (*kind.variables, *swept) if name not in ds]
+    if complete == 1 and missing:
+        return (f"a {kind.name} result without its variable{'s' * (len(missing) > 1)} "
+                f"{', '.join(missing)} (damaged, or not written by softimpact)")
+    return None
 
 
 def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | None = None, *,
@@ -268,7 +337,7 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
     not fit it; nothing is written then.
     """
     name = "result" if isinstance(result, xr.Dataset) else os.fspath(result)
-    ds = result if isinstance(result, xr.Dataset) else open_result(result)
+    ds = memory_order(result) if isinstance(result, xr.Dataset) else read_result(result)
     problem = plane_problem(ds)
     if problem:
         raise ConfigError(f"{name}: {problem}")

@@ -21,19 +21,24 @@ from .kinds.check import check_scene, over_limit
 from .kinds.design_settings import with_target
 from .kinds.scene import load_scene
 from .report.progress import ProgressLines
+from .report.streams import reader_safe_streams
 from .sweep import interrupt
 from .sweep.interrupt import modified, sweep_kept
 
 
 def _user_errors(func):
-    """Turn ConfigError (and unreadable result files) into one line and exit status 2."""
+    """Turn ConfigError (and unreadable result files) into one line and exit status 2;
+    an error after which the run can be resumed (``resumable``, e.g. a Dask cluster
+    lost) says what was kept and the command that resumes (``ctx.meta["softimpact.kept"]``)."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
         except ConfigError as exc:
-            click.echo(f"softimpact: error: {exc}", err=True)
+            kept = click.get_current_context().meta.get("softimpact.kept")
+            more = f"; {kept()}" if getattr(exc, "resumable", False) and kept else ""
+            click.echo(f"softimpact: error: {exc}{more}", err=True)
             sys.exit(2)
 
     return wrapper
@@ -41,9 +46,9 @@ def _user_errors(func):
 
 def _open(path: str):
     # the analyses, xarray and the store: imported when the command runs
-    from .commands import open_result
+    from .commands import read_result
 
-    return open_result(path)
+    return read_result(path)
 
 
 # progress lines started by the running command: its end stops their timers, whatever
@@ -93,9 +98,13 @@ def _warn_outcomes(ds, scene, strict: bool) -> None:
     """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
     --strict, exit with report.outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
     # the analyses, xarray and the store: imported when the command runs
-    from .commands import STRICT_STATUS, outcome_warnings
+    from .commands import STRICT_STATUS, outcome_notes, outcome_warnings
 
-    messages = outcome_warnings(ds, scene.integrator.max_periods)
+    for note in outcome_notes(ds):
+        click.echo(f"softimpact: note: {note}", err=True)
+    # every kind with outcome shares (sweeps, tipping, design) runs the second stage
+    messages = outcome_warnings(ds, scene.integrator.max_periods,
+                                section_periods=scene.integrator.section_periods)
     for message in messages:
         click.echo(f"softimpact: warning: {message}", err=True)
     if messages and strict:
@@ -144,6 +153,8 @@ _QUICK_EXIT: list = []
 def main():
     """softimpact: multistability of oscillators coupled through soft impacts."""
     _quick_exit()
+    # a reader that goes away (`| head`) drops the output, never the result
+    click.get_current_context().with_resource(reader_safe_streams())
 
 
 def _scheduler(ctx, param, value):
@@ -412,8 +423,8 @@ def check(scene, sample, seed, as_json, fail_over):
 
 
 @main.command()
-@click.argument("result_a", type=click.Path(dir_okay=False))
-@click.argument("result_b", type=click.Path(dir_okay=False))
+@click.argument("result_a")  # checked when opened: one line naming the file (no usage text)
+@click.argument("result_b")
 @click.option("--max-label-change", type=click.FloatRange(0, 1), default=None, metavar="F",
               help="Exit 1 when more than this share of the labels differ (sweeps).")
 @click.option("--max-share-change", type=click.FloatRange(0, 1), default=None, metavar="F",

@@ -7,7 +7,7 @@ from .analysis.engine import Problem
 from .analysis.step_stability import rk4_step_warning
 from .analysis.warmup import announce_compilation
 from .api import measure as measure_result
-from .api import open_result, shrink_scene
+from .api import open_result, read_result, shrink_scene
 from .api import sweep as run_to_file
 from .kinds.results import (
     compare_results,
@@ -21,7 +21,7 @@ from .plot import save
 from .report.compare import limits_exceeded
 from .report.fractality import fractality_lines
 from .report.info import compare_shares, incomplete_summary
-from .report.outcomes import STRICT_STATUS
+from .report.outcomes import STRICT_STATUS, outcome_notes
 from .report.verification import verification_line
 from .reproduce.report import reproduce as run_reproduce
 from .reproduce.runs import CACHE
@@ -36,6 +36,7 @@ __all__ = [
     "announce_compilation", "cache_folder", "cache_state", "clear", "compare_results",
     "compare_shares", "describe", "format_comparison", "format_summary",
     "fractality_lines", "incomplete_summary", "limits_exceeded", "measure_result",
-    "open_result", "outcome_warnings", "plan_text", "rk4_step_warning", "run_reproduce",
+    "open_result", "outcome_notes", "outcome_warnings", "plan_text", "read_result",
+    "rk4_step_warning", "run_reproduce",
     "run_to_file", "save", "shrink_scene", "summary", "switched_off", "verification_line",
 ]

@@ -282,3 +282,71 @@ def test_import_is_light_and_names_stay_the_api_functions():
             "assert si.sweep is api.sweep and si.run is api.run, si.sweep; "
             "assert callable(si.plot.basins)")
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
+
+
+# ---------------------------------------------------------------- datasets as handed out
+
+TWO_D = {**PLANE, "grid": {"d": [6.0, 10.0]}}
+
+
+@pytest.fixture(scope="module")
+def two_planes(tmp_path_factory):
+    """A plane at d = 6 and d = 10 (10 x 8 starts each), run in memory and written."""
+    out = tmp_path_factory.mktemp("two") / "two.h5"
+    return si.run(TWO_D, workers=1), si.sweep(TWO_D, out, workers=1), out
+
+
+def test_run_sweep_open_result_and_open_dataset_order_dims_alike(two_planes):
+    """Issue 31.12: the file's order (x2 before x1: ``ds.label.plot()`` puts x1 on the
+    horizontal axis) from si.run, si.sweep, si.open_result and xarray.open_dataset."""
+    import xarray as xr
+
+    ran, swept, out = two_planes
+    with xr.open_dataset(out, engine="h5netcdf") as raw:
+        expected = {name: var.dims for name, var in raw.variables.items()}
+    assert expected["label"][-2:] == ("x2", "x1")
+    for ds in (ran, swept, si.open_result(out)):
+        assert {name: var.dims for name, var in ds.variables.items()} == expected
+    assert ran["label"].shape[-2:] == (8, 10)
+    assert_same_data(ran, si.open_result(out))
+
+
+def test_the_figures_and_measure_take_either_order(two_planes):
+    from softimpact_cli.store import open_result as read_in_memory_order
+
+    ran, _, out = two_planes
+    internal = read_in_memory_order(out)
+    assert internal["label"].dims[-2:] == ("x1", "x2")
+    a, b = si.plot.basins(ran), si.plot.basins(internal)
+    images = [[im.get_array() for ax in f.axes for im in ax.get_images()] for f in (a, b)]
+    assert len(images[0]) == 2
+    for x, y in zip(*images, strict=True):
+        np.testing.assert_array_equal(x, y)
+
+
+def test_a_selected_slice_plots(two_planes):
+    """Issue 31.12: ``ds.sel(d=10)`` (d then a scalar coordinate) draws the d = 10 panel."""
+    ran, _, _ = two_planes
+    whole = si.plot.basins(ran)
+    one = si.plot.basins(ran.sel(d=10.0))
+    (image,) = one.axes[0].get_images()
+    np.testing.assert_array_equal(image.get_array(), whole.axes[1].get_images()[0].get_array())
+    assert "d = 10" in one.axes[0].get_title()
+
+
+def test_one_panel_on_your_own_axes_is_titled_once(two_planes):
+    """Issue 31.12: two one-panel plots on the caller's subplots: each panel says its own
+    parameters in one line; the long description is not repeated on each."""
+    from matplotlib.figure import Figure
+
+    ran, _, _ = two_planes
+    fig = Figure()
+    left, right = fig.subplots(1, 2)
+    si.plot.basins(ran.isel(d=[0]), ax=left)  # one grid point each
+    si.plot.basins(ran.isel(d=[1]), ax=right)
+    titles = [left.get_title(), right.get_title()]
+    assert all("\n" not in t for t in titles), titles
+    assert "d = 6" in titles[0] and "d = 10" in titles[1]
+    assert fig.get_suptitle() == ""
+    alone = si.plot.basins(ran.isel(d=[0]))  # a figure of its own keeps its description
+    assert alone.axes[0].get_title().count("\n") >= 2

@@ -18,6 +18,7 @@ def test_the_notebook_example_runs_and_its_outputs_agree(tmp_path):
                          env={**os.environ, "MPLBACKEND": "Agg"})
     assert run.returncode == 0, run.stderr
     out = run.stdout
+    assert f"kinds: {len(si.kinds())} (trajectory, catalogue, basins" in out
     assert "trajectory: converged, period" in out
     assert "catalogue: 2 attractors, 4 combinations" in out
     assert "basin shares: " in out and out.strip().endswith("basins.h5")
@@ -32,3 +33,8 @@ def test_the_notebook_example_runs_and_its_outputs_agree(tmp_path):
     label = stored["label"].values.ravel()
     for code in set(label.tolist()):
         assert f"{names[code]} {(label == code).mean():.2f}" in shares
+    # the start's label is the one its trajectory converged to (same period)
+    classify = out.split("classify: ")[1].splitlines()[0]
+    period = int(out.split("trajectory: converged, period ")[1].split()[0])
+    assert f"(period {period}) at d = 6" in classify
+    assert "ci_low" in out and "ci_high" in out  # the shares' table

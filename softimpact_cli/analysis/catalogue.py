@@ -42,7 +42,8 @@ class Attractor:
     points : (period, 2) section points (x, v) at t = nT, canonical order
     multipliers : (2,) complex Floquet multipliers (eigenvalues of the monodromy matrix)
     amplitude : max |x| over the orbit
-    share : fraction of the sampled initial conditions that reached it
+    share : fraction of the search's initial conditions (one body) that reached it; not
+        a basin share (see SEARCH_SHARE)
     residual : |P^p(x0) - x0|_inf after Newton refinement
     """
 
@@ -424,6 +425,14 @@ def search_from_arrays(arrays: dict[str, np.ndarray], source: str) -> BodySearch
 # ------------------------------------------------------------------ dataset form
 
 CURVE_SAMPLES = 256  # dense samples per forcing period of each stored orbit curve
+# Each attractor's share of the one-body search's starts. Not a basin share: the search
+# samples one body alone over the [catalogue] box, while a pair's basins are shares of
+# its own starts (figure 6(d): 0.47 / 0.53 here against basin shares 0.92 / 0.08). Named
+# "attractor_share" in results written before 2026-11-27; search_shares reads both.
+SEARCH_SHARE = "attractor_search_share"
+OLD_SEARCH_SHARE = "attractor_share"
+SEARCH_SHARE_TEXT = ("share of the attractor search's starts (one body alone, [catalogue] "
+                     "grid and random) that reached it; not a basin share")
 
 
 def _curve(problem: Problem, start: np.ndarray, t0: float, period: int, sign: float
@@ -455,8 +464,8 @@ def catalogue_dataset(cat: Catalogue, system: System, integrator: IntegratorSett
                              {"long_name": "period", "units": "forcing periods"}),
         "attractor_amplitude": (("attractor",), [a.amplitude for a in cat.attractors],
                                 {"long_name": "max |x| over the orbit", "units": "1"}),
-        "attractor_share": (("attractor",), [a.share for a in cat.attractors],
-                            {"long_name": "share of sampled initial conditions", "units": "1"}),
+        SEARCH_SHARE: (("attractor",), [a.share for a in cat.attractors],
+                       {"long_name": SEARCH_SHARE_TEXT, "units": "1"}),
         "attractor_residual": (("attractor",), [a.residual for a in cat.attractors],
                                {"long_name": "|P^p(x) - x| after Newton", "units": "1"}),
         "attractor_points": (("attractor", "point", "body_variable"), pts,
@@ -519,6 +528,12 @@ def catalogue_dataset(cat: Catalogue, system: System, integrator: IntegratorSett
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
+def search_shares(ds) -> np.ndarray:
+    """(attractor,) each attractor's share of the one-body search (SEARCH_SHARE), from a
+    result of any date (OLD_SEARCH_SHARE before the rename)."""
+    return ds[SEARCH_SHARE if SEARCH_SHARE in ds else OLD_SEARCH_SHARE].values
+
+
 def catalogue_from_dataset(ds, model: str = "", values: dict | None = None) -> Catalogue:
     """Rebuild a :class:`Catalogue` from its dataset (for labelling later runs)."""
     attractors = []
@@ -529,7 +544,7 @@ def catalogue_from_dataset(ds, model: str = "", values: dict | None = None) -> C
         common = dict(number=int(number), period=p,
                       amplitude=float(ds["attractor_amplitude"].values[i]),
                       multipliers=mult[np.isfinite(mult)],
-                      share=float(ds["attractor_share"].values[i]),
+                      share=float(search_shares(ds)[i]),
                       residual=float(ds["attractor_residual"].values[i]))
         attractors.append(Attractor(points=ds["attractor_points"].values[i, :p], **common))
         if "right_points" in ds:

@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from ..config.axes import GRID_AXES
+from .attributes import attribute_list
 from .basin_entropy import basin_entropy, default_box_sizes
 from .uncertainty import default_radii, uncertainty_exponent
 from .wada import wada_merge
@@ -43,7 +44,7 @@ def plane_problem(ds: xr.Dataset) -> str | None:
 
 
 def _grid_dims(ds: xr.Dataset) -> tuple[str, ...]:
-    return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+    return tuple(attribute_list(ds.attrs, "grid_dims", GRID_AXES))
 
 
 def _plane_dims(ds: xr.Dataset) -> tuple[str, str]:
@@ -62,7 +63,7 @@ def planes(ds: xr.Dataset):
         sel = dict(zip(grid, index, strict=True))
         point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims})
                           .values)
-                 for a in tuple(str(ds.attrs.get("grid_parameters", "")).split()) + GRID_AXES
+                 for a in tuple(attribute_list(ds.attrs, "grid_parameters")) + GRID_AXES
                  if a in ds}
         yield point, label.values[index]
 
@@ -112,11 +113,12 @@ def fractality(ds: xr.Dataset, box_sizes=None, radii=None, wada_radius: int = 5,
                  if k in KEPT_ATTRS or k.startswith("verify_")}  # the labels' error too
     out.attrs.update({
         "analysis": "fractality", "source_analysis": "basins",
-        "plane_axes": f"{rows} {cols}", "plane_shape": f"{shape[0]} {shape[1]}",
-        "cell_size": f"{step[0]:.6g} {step[1]:.6g}",
-        "grid_dims": " ".join(_grid_dims(ds)),
-        "box_sizes": " ".join(str(n) for n in box_sizes),
-        "radii": " ".join(str(r) for r in radii),
+        # lists: arrays in the file (analysis/attributes.py)
+        "plane_axes": [rows, cols], "plane_shape": [int(shape[0]), int(shape[1])],
+        "cell_size": [float(f"{step[0]:.6g}"), float(f"{step[1]:.6g}")],
+        "grid_dims": list(_grid_dims(ds)),
+        "box_sizes": [int(n) for n in box_sizes],
+        "radii": [int(r) for r in radii],
         "wada_max_radius": int(wada_radius), "wada_tol": float(wada_tol),
         "labels_convention": "every distinct label a basin (unresolved, diverged and each "
                              "impacting period included), as in Attractors.jl",

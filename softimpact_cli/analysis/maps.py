@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from .attributes import attribute_list
 from .critical_distance import critical_distances
 from .labels import parse_label
 
@@ -28,7 +29,7 @@ def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list,
     names = [str(n) for n in ds["label_name"].values]
     codes = [int(c) for c in ds["label_code"].values]
     kinds = [parse_label(n).kind for n in names]
-    ic_dims = str(ds.attrs["ic_dims"]).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     label = ds["label"]
     present = xr.concat([(label == c).any(ic_dims) for c in codes], dim="label_index")
     attractor = xr.DataArray([k not in ("unresolved", "diverged") for k in kinds],

@@ -35,10 +35,26 @@ import numpy as np
 import xarray as xr
 
 from ..kernels.codes import BASE_WIDTH, NONPERIODIC_BASES, UNRESOLVED_LABEL
+from .engine import Problem
 from .labels import Label
+from .lyapunov import lyapunov_spectrum
 
 MATCH = 0.5  # share of a trajectory's cells that must be an attractor's to belong to it
 SETTLING = "settling"  # the table's kind of a contracting recurrent set (not an attractor)
+LYAPUNOV_TRANSIENT = 20  # periods to align the tangent vectors before averaging
+LYAPUNOV_SEGMENTS = 10
+
+
+def section_spectrum(problem: Problem, state, t: float) -> tuple[np.ndarray, np.ndarray]:
+    """(exponents, standard errors), (dim,) each in 1/time, largest first, of the
+    trajectory through ``state`` at time ``t``: the spectrum every recurrent set is
+    judged by (``section_lyapunov_periods`` rounded up to whole segments, after
+    LYAPUNOV_TRANSIENT periods), in sweeps and for a single trajectory alike."""
+    s = problem.integrator
+    periods = -(-s.section_lyapunov_periods // LYAPUNOV_SEGMENTS) * LYAPUNOV_SEGMENTS
+    sp = lyapunov_spectrum(problem, state, t, periods=periods, transient=LYAPUNOV_TRANSIENT,
+                           segments=LYAPUNOV_SEGMENTS)
+    return sp.exponents, sp.stderr
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,16 @@ so a block keeps the per-period step and switch budgets), and the cells are nump
 The first pass is not touched, so every label it gives stays bit for bit; the price is
 that the first ``max_periods`` periods are integrated again (``classify_near`` does not
 return its end state), which the README's measured cost includes.
+
+**Known sets** (``KnownSets``: the recurrent sets earlier trajectories of the same block
+of a sweep reached, with their cells). Before integrating the first pass again, a
+trajectory is probed for at most ``PROBE_PERIODS`` periods from its start, ``PROBE_BLOCK``
+at a time: once ``section_recurrences`` consecutive section points lie in the cells of
+one known set (and do not repeat with a period <= ``section_max_period``: a long-period
+orbit inside the set's cells is left to the full stage), it is **recurrent on that set**
+(``known_set``; Attractors.jl's rule for points landing in a known attractor's cells)
+and stops there, its located cells and cloud being those points. A probe that does not
+stop is discarded and the stage runs as without known sets, bit for bit.
 """
 
 from __future__ import annotations
@@ -34,8 +44,11 @@ from ..config import IntegratorSettings
 from ..kernels import orbit
 from ..kernels.codes import OK
 from .engine import Problem
+from .nonperiodic import SETTLING, kind_of, section_spectrum
 
 SECTION_BLOCK = 250  # forcing periods integrated between two looks at the section points
+PROBE_BLOCK = 50  # periods between two looks while probing for a known set
+PROBE_PERIODS = 500  # the probe's budget from the start (then the stage as without sets)
 DISTINCT = 100.0  # as kernels.orbit.DISTINCT: a divisor nearly repeating means "spiralling"
 
 PERIODIC, RECURRENT, TRANSIENT, FAILED = "periodic", "recurrent", "transient", "failed"
@@ -52,7 +65,9 @@ class SectionFollow:
     located attractor (RECURRENT); cloud : (locate, dim) its section points in time order;
     contacts : contact onsets over the orbit or the located points; max_g : max of
     x1 - x2 - d over them (>= 0: impacting; -inf without a stop); end_state (dim,),
-    end_time : where the stage stopped (on a section time).
+    end_time : where the stage stopped (on a section time); known_set : index of the
+    known set it was found recurrent on (``KnownSets``), else -1, whose contact flag it
+    takes (the few points located there may miss a rare impact of an impacting set).
     """
 
     outcome: str
@@ -65,10 +80,69 @@ class SectionFollow:
     max_g: float
     end_state: np.ndarray
     end_time: float
+    known_set: int = -1
+    known_impacting: bool = False
 
     @property
     def impacting(self) -> bool:
+        if self.known_set >= 0:
+            return self.known_impacting
         return self.max_g >= 0.0
+
+
+class KnownSets:
+    """The recurrent sets earlier trajectories of one block of a sweep reached: their
+    section cells (rows of ``cell_indices``) and contact flags, in the order found. A
+    sweep starts a new one where it starts new recurrence cells (every grid point and
+    block of flat indices), so labels do not depend on how a run is cut into chunks."""
+
+    def __init__(self):
+        self.cells: list[set] = []
+        self.impacting: list[bool] = []
+        self.first: list[tuple[np.ndarray, float]] = []  # its first trajectory's end
+        self.attractor: list[bool | None] = []  # not contracting ("settling")? None: unknown
+
+    def __len__(self) -> int:
+        return len(self.cells)
+
+    def learn(self, follow: SectionFollow) -> None:
+        """Add what a recurrent trajectory's stage found: its cells join the set it was
+        found on, or start a new set."""
+        rows = set(map(tuple, np.asarray(follow.cells).tolist()))
+        if follow.known_set >= 0:
+            self.cells[follow.known_set] |= rows
+        else:
+            self.cells.append(rows)
+            self.impacting.append(follow.impacting)
+            self.first.append((follow.end_state, follow.end_time))
+            self.attractor.append(None)
+
+    def is_attractor(self, k: int, problem: Problem) -> bool:
+        """Whether set k is chaotic or quasi-periodic by its first trajectory's spectrum
+        (the one the sweep's naming computes for it, ``nonperiodic.section_spectrum``),
+        computed once when a trajectory first lands on it. A contracting set is a
+        periodic orbit not converged yet: its trajectories go through the full stage."""
+        if self.attractor[k] is None:
+            exponents, _ = section_spectrum(problem, *self.first[k])
+            self.attractor[k] = kind_of(self.impacting[k], float(exponents[0]),
+                                        problem.integrator.section_zero_exponent) != SETTLING
+        return self.attractor[k]
+
+    def landed(self, cells: np.ndarray, runs: list[int], needed: int) -> tuple[int, int]:
+        """Feed cell rows (n, dim) in time order; ``runs`` (one per set, updated in place)
+        count the consecutive points in each set's cells. (set, row) at which a run
+        first reached ``needed`` (the lowest set on a tie), else (-1, -1)."""
+        while len(runs) < len(self.cells):
+            runs.append(0)
+        for i, row in enumerate(map(tuple, cells.tolist())):
+            hit = -1
+            for k, known in enumerate(self.cells):
+                runs[k] = runs[k] + 1 if row in known else 0
+                if hit < 0 and runs[k] >= needed:
+                    hit = k
+            if hit >= 0:
+                return hit, i
+        return -1, -1
 
 
 def cell_indices(points: np.ndarray, size: float) -> np.ndarray:
@@ -125,10 +199,54 @@ def _record(problem: Problem, y: np.ndarray, t: float, periods: int):
     return int(out.status), out.section_y, out.contacts, out.max_g
 
 
-def follow_section(problem: Problem, state, t0: float, skip: int) -> SectionFollow:
+def _probe(problem: Problem, y: np.ndarray, t0: float, budget: int, known: KnownSets
+           ) -> SectionFollow | None:
+    """The trajectory from ``y`` at ``t0`` for at most ``budget`` periods, PROBE_BLOCK at a
+    time: RECURRENT on a known set once ``section_recurrences`` consecutive section points
+    lie in its cells (unless they repeat with a period <= section_max_period), else None
+    (see the module docstring)."""
+    s: IntegratorSettings = problem.integrator
+    T = problem.period
+    n0 = orbit.first_section(t0, T)
+    points, contacts, max_g, runs = [], [], [], []  # point j: the section at (n0 + j) T
+    used = 0
+    while used < budget:
+        block = min(PROBE_BLOCK, budget - used)
+        status, pts, c, g = _record(problem, y, (n0 + used) * T if used else t0, block)
+        if status != OK:
+            return None  # the full stage meets the failure and reports it
+        new = slice(1 if used else 0, None)  # row 0 repeats the previous block's last
+        points.append(pts[new])
+        contacts.append(c[new])
+        max_g.append(g[new])
+        used += block
+        y = pts[-1].copy()
+        k, i = known.landed(cell_indices(pts[new], s.section_cell), runs,
+                            s.section_recurrences)
+        if k < 0:
+            continue
+        cloud = np.concatenate(points)
+        end = len(cloud) - len(points[-1]) + i  # the point that completed the run
+        window = cloud[max(0, end + 1 - (2 * s.section_max_period + 1)): end + 1]
+        if repeat_period(window, s.section_max_period, s.convergence_tol) or \
+                not known.is_attractor(k, problem):
+            return None  # an orbit inside the set's cells: the full stage names it
+        located = slice(end + 1 - s.section_recurrences, end + 1)
+        c_all, g_all = np.concatenate(contacts), np.concatenate(max_g)
+        return SectionFollow(
+            RECURRENT, OK, used, np.zeros((0, cloud.shape[1])),
+            np.unique(cell_indices(cloud[located], s.section_cell), axis=0),
+            cloud[located].copy(), int(c_all[located].sum()), float(g_all[located].max()),
+            cloud[end].copy(), (n0 + end) * T, k, known.impacting[k])
+    return None
+
+
+def follow_section(problem: Problem, state, t0: float, skip: int,
+                   known: KnownSets | None = None) -> SectionFollow:
     """Follow the trajectory imposed as ``state`` at ``t0`` on the section, from the end
     of its first ``skip`` forcing periods (the first pass's budget), with the problem's
-    ``section_*`` settings (see the module docstring)."""
+    ``section_*`` settings; ``known``: the recurrent sets earlier trajectories of its
+    block reached, which it may be found on at once (see the module docstring)."""
     s: IntegratorSettings = problem.integrator
     T = problem.period
     y = np.array(state, dtype=np.float64)
@@ -136,6 +254,10 @@ def follow_section(problem: Problem, state, t0: float, skip: int) -> SectionFoll
     empty = np.zeros((0, dim))
     no_cells = np.zeros((0, dim), dtype=np.int64)
     n0 = orbit.first_section(float(t0), T)
+    if known:
+        landed = _probe(problem, y, float(t0), PROBE_PERIODS, known)
+        if landed is not None:
+            return landed
     status, pts, _, _ = _record(problem, y, t0, skip)  # the first pass again
     if status != OK:
         return SectionFollow(FAILED, status, 0, empty, no_cells, empty, 0, -np.inf, y, t0)

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from .attributes import attribute_list
 from .basin_entropy import share_entropy
 from .labels import parse_label
 
@@ -62,8 +63,8 @@ def basin_stability(ds: xr.Dataset, sample_dim: str = "sample") -> xr.Dataset:
     names = [str(n) for n in ds["label_name"].values]
     label = ds["label"]
     n = int(np.prod([label.sizes[d] for d in label.dims
-                     if d == sample_dim or d in str(ds.attrs.get("ic_dims", "")).split()]))
-    ic_dims = [d for d in label.dims if d in str(ds.attrs.get("ic_dims", "")).split()]
+                     if d == sample_dim or d in attribute_list(ds.attrs, "ic_dims")]))
+    ic_dims = [d for d in label.dims if d in attribute_list(ds.attrs, "ic_dims")]
     per_label = xr.concat([(label == c).sum(ic_dims) for c in codes], dim="label_index")
     grouping = groups(names)
     group_names = list(grouping)

@@ -1,14 +1,125 @@
-"""One trajectory: dense time series, stroboscopic points and its classification."""
+"""One trajectory: dense time series, stroboscopic points and its classification.
+
+The classification is a sweep's, for one start: the first pass (``classify_state``) and,
+when it finds no period (``unresolved``) and ``section_periods > 0``, the same second
+stage (``section_follow.follow_section``, then ``nonperiodic.identify`` with the same
+Lyapunov spectrum ``nonperiodic.section_spectrum``): a long-period orbit, a chaotic or
+quasi-periodic attractor named ``chaotic A1`` etc. with its exponents (the result's
+``nonperiodic_*`` variables, as a sweep stores them), or a long transient.
+"""
 
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass, field
 
 import numpy as np
 import xarray as xr
 
-from ..kernels.codes import message, outcome
-from .engine import Problem, classify_state, record_trajectory
+from ..kernels.codes import (
+    BY_KNOWN_ORBIT,
+    BY_OWN_REPEAT,
+    BY_SECTION,
+    CLASSIFIED_BY,
+    CONVERGED,
+    UNRESOLVED,
+    message,
+    outcome,
+)
+from .engine import Classification, Problem, classify_state, record_trajectory
+from .nonperiodic import SETTLING, Recurrent, attractor_table, identify, section_spectrum
+from .section_follow import FAILED, PERIODIC, RECURRENT, follow_section
+
+NOT_RUN = "not run"  # second_stage attribute: the first pass classified it (or stage off)
+
+
+@dataclass(frozen=True)
+class TwoStageClassification:
+    """What both stages say about one start.
+
+    outcome : converged, unresolved, diverged, or the attractor kind (chaotic,
+    quasi-periodic, impacting chaotic, impacting quasi-periodic); label : the
+    attractor's name for a recurrent set ("chaotic A1"), else ""; status : kernel status
+    (CONVERGED after a long-period orbit; a recurrent set keeps the first pass's
+    UNRESOLVED, as in sweeps); orbit : (period, dim) section points of the periodic
+    orbit; periods_used : both stages; second_stage : the follow's outcome or NOT_RUN;
+    table : the attractor table (``nonperiodic.attractor_table``; empty without one).
+    """
+
+    outcome: str
+    label: str
+    status: int
+    message: str
+    period: int
+    orbit: np.ndarray
+    periods_used: int
+    contacts: int
+    max_penetration: float
+    impacting: bool
+    classified_by: int
+    second_stage: str
+    first: Classification
+    table: xr.Dataset = field(default_factory=xr.Dataset)
+
+
+def classify_both_stages(problem: Problem, state, t0: float) -> TwoStageClassification:
+    """The first pass from ``state`` at ``t0`` and, when it ends ``unresolved``, the
+    sweeps' second stage (see the module docstring)."""
+    cls = classify_state(problem, state, t0)
+    how = BY_KNOWN_ORBIT if cls.captured >= 0 else BY_OWN_REPEAT
+    first = dict(first=cls, label="", status=cls.status, orbit=cls.orbit, period=0,
+                 contacts=0, max_penetration=-np.inf, impacting=False,
+                 classified_by=BY_SECTION)
+    s = problem.integrator
+    if cls.status != UNRESOLVED or s.section_periods <= 0:
+        return TwoStageClassification(
+            **{**first, "period": cls.period, "contacts": cls.contacts,
+               "max_penetration": cls.max_penetration, "impacting": cls.impacting,
+               "classified_by": how},
+            outcome=cls.outcome, message=message(cls.status),
+            periods_used=cls.periods_used, second_stage=NOT_RUN)
+    follow = follow_section(problem, state, t0, cls.periods_used)
+    first.update(periods_used=cls.periods_used + follow.periods, second_stage=follow.outcome)
+    if follow.outcome == FAILED:
+        return TwoStageClassification(**{**first, "status": follow.status},
+                                      outcome=outcome(follow.status),
+                                      message=message(follow.status))
+    if follow.outcome == PERIODIC:
+        q = len(follow.orbit)
+        return TwoStageClassification(
+                **{**first, "status": CONVERGED, "orbit": follow.orbit, "period": q,
+               "contacts": follow.contacts, "max_penetration": follow.max_g,
+               "impacting": follow.impacting},
+            outcome="converged",
+            message=f"converged to a period-{q} orbit of the stroboscopic map after "
+                    f"max_periods (followed on the section)")
+    if follow.outcome != RECURRENT:  # a long transient: still moving after both budgets
+        return TwoStageClassification(
+            **first, outcome="unresolved",
+            message=f"no period <= section_max_period and no recurrent set within "
+                    f"max_periods + section_periods = {first['periods_used']} periods "
+                    f"(a long transient: raise `section_periods`)")
+    rec = Recurrent(0, 0, follow.cells, follow.cloud, follow.impacting, follow.end_state,
+                    follow.end_time)
+    _, (attractor,) = identify([rec], lambda _point, y, t: section_spectrum(problem, y, t),
+                               s.section_zero_exponent)
+    lam = float(attractor.at[0].exponents[0])
+    cells = len(follow.cells)
+    if attractor.kind == SETTLING:
+        kind = "unresolved"
+        why = (f"recurrent on {cells} section cells but contracting (largest Lyapunov "
+               f"exponent {lam:+.4g} /time < -section_zero_exponent): a periodic orbit not "
+               f"converged yet")
+    else:
+        kind = attractor.kind
+        why = (f"{kind} attractor on {cells} section cells, largest Lyapunov exponent "
+               f"{lam:+.4g} /time (section_zero_exponent {s.section_zero_exponent:g})")
+    return TwoStageClassification(
+        **{**first, "label": attractor.name, "orbit": follow.cloud[:0],
+           "contacts": follow.contacts, "max_penetration": follow.max_g,
+           "impacting": follow.impacting},
+        outcome=kind, message=why,
+        table=attractor_table([attractor], tuple(problem.system.state_names)))
 
 
 def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
@@ -22,7 +133,7 @@ def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
     started = time.perf_counter()
     traj = record_trajectory(problem, state, t0, periods, samples_per_period)
     recorded = time.perf_counter()
-    cls = classify_state(problem, state, t0)
+    cls = classify_both_stages(problem, state, t0)
     done = time.perf_counter()
     T = problem.period
     has_contact = problem.surfaces.contact >= 0
@@ -57,7 +168,10 @@ def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
             "record_outcome": outcome(traj.status),
             "status": int(cls.status),
             "outcome": cls.outcome,
-            "status_message": message(cls.status),
+            "status_message": cls.message,
+            **({"label": cls.label} if cls.label else {}),
+            "classified_by": CLASSIFIED_BY[cls.classified_by],
+            "second_stage": cls.second_stage,
             "period": int(cls.period),
             "periods_used": int(cls.periods_used),
             "contacts_on_orbit": int(cls.contacts),
@@ -69,7 +183,9 @@ def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
             "record_wall_s": recorded - started,
             "classify_wall_s": done - recorded,
             **{f"record_{k}": v for k, v in traj.counters.items() if k != "mode"},
-            **{f"classify_{k}": v for k, v in cls.counters.items() if k != "mode"},
+            **{f"classify_{k}": v for k, v in cls.first.counters.items() if k != "mode"},
         },
     )
+    if cls.table.data_vars:  # the attractor with its exponents, as sweeps store it
+        ds = xr.merge([ds, cls.table], combine_attrs="override", compat="override")
     return ds

@@ -115,6 +115,11 @@ class AnalysisKind:
         on mostly unresolved or diverged results (None: the kind has no such counts)
     compare(a, b, name_a, name_b) -> dict, compare_text(report, max_points) -> list[str] :
         ``softimpact compare`` of two results of this kind (None: not comparable)
+    variables : what every complete result of the kind holds; a file that says it is one
+        and lacks them is refused when opened (``api.open_result``)
+    result_bytes(scene) -> int : an upper estimate of the result's size (bytes,
+        uncompressed) of a kind that is not a sweep (a sweep's plan has its own), checked
+        against free memory and disk space before the run (``config.space``)
     plot : its figure (``softimpact plot <kind>``), a PlotSpec
     example : its minimal commented scene (``softimpact example <kind>``; None: the
         study's kinds keep theirs in ``config.examples``)
@@ -135,6 +140,8 @@ class AnalysisKind:
     outcome_counts: Callable[[Any], tuple[int, int, int] | None] | None = None
     compare: Callable[..., dict] | None = None
     compare_text: Callable[[dict, int], list[str]] | None = None
+    result_bytes: Callable[[Any], int] | None = None
+    variables: tuple[str, ...] = ()
     info_catalogue: bool = True
     progress_unit: str = "steps"
     options: tuple[str, ...] = field(default=())  # run options it takes (workers, ...)

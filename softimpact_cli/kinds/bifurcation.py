@@ -152,6 +152,7 @@ KINDS = (AnalysisKind("bifurcation", "each solution followed along d (or any par
                       shrink=shrink, run=run,
                       check=check, info_after=info_lines, compare=compare,
                       compare_text=compare_text, progress_unit="branches",
+                      variables=("label", "destroyed_at", "branch_name"),
                       plot=PlotSpec("Section displacements of both bodies (one body: "
                                     "displacement and velocity) against the followed "
                                     "parameter, destruction points marked.")),)

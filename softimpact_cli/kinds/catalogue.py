@@ -68,5 +68,6 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 KINDS = (AnalysisKind("catalogue", "the attractors of one body and the pair's combinations",
                       read, plan, run=run, summary=catalogue_summary, report=format_catalogue,
                       progress_unit="initial conditions",
+                      variables=("attractor_name", "attractor_period", "attractor_points"),
                       plot=PlotSpec("Attractors on the phase plane and one panel per "
                                     "combination of a catalogue RESULT.")),)

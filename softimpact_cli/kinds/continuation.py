@@ -183,6 +183,7 @@ KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and u
                       "Neimark-Sacker and grazing located", read, plan, sections=sections,
                       shrink=shrink,
                       run=run, summary=continuation_info, report=format_continuation,
+                      variables=("parameter", "state", "branch_name"),
                       info_after=lambda ds: format_continuation(ds).splitlines(),
                       progress_unit="branches",
                       plot=PlotSpec("Branches against the parameter (stable solid, unstable "

@@ -139,4 +139,5 @@ PLOT = PlotSpec(
 KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
                       plan, sections=sections, shrink=shrink, run=run, check=check,
                       compare=compare_dcrit, compare_text=compare_text, progress_unit="phases",
+                      variables=("d_crit", "combination_label"),
                       plot=PLOT),)

@@ -113,6 +113,7 @@ KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target surviv
                       "design)", read, plan, sections=sections, run=run, summary=design_summary,
                       report=format_design, info_lines=info_lines, info_catalogue=False,
                       outcome_counts=design_counts, progress_unit="trajectories",
+                      variables=("score", "share"),
                       options=("workers", "scheduler", "echo"),
                       plot=PlotSpec("The (d, phi) plane with the target-only region, the "
                                     "pick and runners-up, beside the basin stability at "

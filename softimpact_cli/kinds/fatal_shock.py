@@ -107,5 +107,6 @@ KINDS = (AnalysisKind(
     read, plan, sections=sections, run=run, summary=fatal_shock_summary,
     info_lines=fatal_shock_lines,
     info_catalogue=False, options=("workers",), progress_unit="phases",
+    variables=("shock_destination",),
     plot=PlotSpec("The fatal shocks of a fatal_shock RESULT against the phase of the "
                   "orbit: the smallest over directions, the median and the quartiles.")),)

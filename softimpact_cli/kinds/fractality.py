@@ -109,6 +109,7 @@ KINDS = (AnalysisKind(
     "fractality", "basin entropy, uncertainty exponent and Wada test of a plane",
     read, plan, sections=sections, run=run, summary=fractality_summary, report=report,
     info_after=fractality_lines, info_catalogue=False, progress_unit="trajectories",
+    variables=("label_share", "n_basins"),
     options=("workers", "scheduler", "echo"),
     plot=PlotSpec("S_b and S_bb against the box size, the uncertainty fit and the Wada map "
                   "of a fractality RESULT (softimpact measure), one row per plane.",

@@ -145,7 +145,7 @@ KINDS = (AnalysisKind("lyapunov", "Lyapunov exponents (Benettin, saltation at sw
                       sections=sections, shrink=shrink, run=run, summary=lyapunov_summary,
                       report=format_lyapunov,
                       info_after=lambda ds: format_lyapunov(ds).splitlines(),
-                      progress_unit="spectra",
+                      progress_unit="spectra", variables=("exponent",),
                       plot=PlotSpec("Lyapunov exponents with their standard errors (against "
                                     "the parameter, beside the section states, for a grid "
                                     "run).")),)

@@ -37,10 +37,12 @@ def outcome_counts(ds) -> tuple[int, int, int] | None:
     return kind.outcome_counts(ds)
 
 
-def outcome_warnings(ds, max_periods: int, threshold: float = _outcomes.THRESHOLD
-                     ) -> list[str]:
-    """Sentences about a result mostly unresolved or diverged, or an empty catalogue."""
-    return _outcomes.outcome_warnings(ds, max_periods, threshold, outcome_counts(ds))
+def outcome_warnings(ds, max_periods: int, threshold: float = _outcomes.THRESHOLD,
+                     section_periods: int = 0) -> list[str]:
+    """Sentences about a result mostly unresolved or diverged, or an empty catalogue
+    (``section_periods``: the second stage's budget after ``max_periods``, 0: off)."""
+    return _outcomes.outcome_warnings(ds, max_periods, threshold, outcome_counts(ds),
+                                      section_periods)
 
 
 def comparable() -> tuple[str, ...]:

@@ -12,7 +12,7 @@ import os
 from dataclasses import dataclass, replace
 
 from ..analysis.maps import add_map_counts
-from ..config.axes import catalogue_axes, every_axis, parameter_axes
+from ..config.axes import GRID_AXES, catalogue_axes, every_axis, parameter_axes
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
 from ..config.scene import thin
@@ -107,6 +107,10 @@ def map_counts(ds, scene, catalogue):
 SHOW_ERROR = PlotOption("--show-error", "show_error", "Print the result's measured label "
                         "error (its verification line) at the foot.", kind="flag")
 
+# what every complete sweep result holds and info, plot, compare and measure read: the
+# labels, the label tables that name their codes, the grid axes (GRID_AXES)
+SWEEP_VARIABLES = ("label", "label_code", "label_name", *GRID_AXES)
+
 PLOTS = {
     "basins": PlotSpec(
         "Basins of attraction of a plane sweep RESULT, one panel per grid point.",
@@ -135,7 +139,7 @@ KINDS = tuple(
                  shrink=shrink, check=check, summary=summarise,
                  outcome_counts=label_counts, compare=compare_sweeps,
                  compare_text=sweep_comparison_text,
-                 progress_unit="trajectories", plot=PLOTS[name])
+                 progress_unit="trajectories", plot=PLOTS[name], variables=SWEEP_VARIABLES)
     for name, description, summarise, settings in (
         ("basins", "the label of every start on a plane, at every [grid] point", sweep_summary,
          SweepAnalysis),

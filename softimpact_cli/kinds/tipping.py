@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from ..analysis.attributes import attribute_list
 from ..analysis.tipping import attractor_destinations, tipping_probabilities
 from ..config.reader import ConfigError
 from ..report.compare import compare_sweeps, sweep_comparison_text
@@ -26,7 +27,7 @@ from ..sweep import label_states
 from ..sweep.plan import SweepSettings
 from ..sweep.result import grid_dims
 from .base import AnalysisKind, PlotOption, PlotSpec, Sections
-from .sweeps import SHOW_ERROR, _reader, check, plan, shrink
+from .sweeps import SHOW_ERROR, SWEEP_VARIABLES, _reader, check, plan, shrink
 from .sweeps import sections as sweep_sections
 
 
@@ -52,7 +53,7 @@ def sections(analysis, ctx) -> Sections:
 def add_tipping(ds, scene, catalogue):
     """The sweep's extra variables: the tipping matrix and the solutions' destinations."""
     dims = grid_dims(ds)
-    ic_dims = str(ds.attrs["ic_dims"]).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     label = ds["label"].transpose(*dims, *ic_dims).values.reshape(2, -1)
     codes = [int(c) for c in ds["label_code"].values]
     table = dict(zip(codes, (str(n) for n in ds["label_name"].values), strict=True))
@@ -94,6 +95,7 @@ KINDS = (AnalysisKind(
     summary=summary, info_after=tipping_lines,
     outcome_counts=label_counts, compare=compare_sweeps,
     compare_text=sweep_comparison_text,
+    variables=(*SWEEP_VARIABLES, "tip_probability"),
     progress_unit="trajectories",
     plot=PlotSpec("The tipping matrix of a tipping RESULT (and, over a plane, the basins "
                   "before and after).", complete=True,

@@ -7,6 +7,8 @@ from dataclasses import dataclass
 from ..analysis.engine import Problem
 from ..analysis.trajectory import trajectory_dataset
 from ..config.limits import MAX_TRAJECTORY_SAMPLES
+from ..config.reader import ConfigError
+from ..config.space import OVERHEAD_BYTES, size_text
 from .base import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
 
 
@@ -21,9 +23,28 @@ class TrajectoryAnalysis:
     samples_per_period: int = 64
 
 
+def _missing_state(sec, ctx):
+    """The error of a trajectory without its start: a scene without [analysis], or without
+    its ``kind``, is one trajectory (the default kind), which needs ``state``."""
+    names = ", ".join(ctx.system.state_names)
+    if "analysis" not in ctx.doc:
+        sweep = "initial_conditions" in ctx.doc or "grid" in ctx.doc
+        return ConfigError(
+            f"{ctx.source}: [analysis]: missing; a scene without it is one trajectory "
+            f"(kind = \"trajectory\"), which needs [analysis] state = [{names}] (the "
+            "initial state)" + ("; for a sweep over [initial_conditions] set [analysis] "
+                                "kind = \"basins\", \"stability\" or \"map\"" if sweep
+                                else "; or set [analysis] kind (softimpact example lists "
+                                     "the kinds)"))
+    if not sec.has("kind"):
+        return sec.fail("state", f"is required: the initial {names} (no kind is set: the "
+                                 "scene is one trajectory, the default kind)")
+    return sec.fail("state", f"is required: the initial {names}")
+
+
 def read(sec, ctx) -> TrajectoryAnalysis:
     if not sec.has("state"):
-        raise sec.fail("state", f"is required: the initial {', '.join(ctx.system.state_names)}")
+        raise _missing_state(sec, ctx)
     analysis = TrajectoryAnalysis(
         kind="trajectory",
         state=read_state(sec, "state", ctx.system),
@@ -44,11 +65,25 @@ def run(scene, progress=None, **_):
                               a.t0, a.periods, a.samples_per_period)
 
 
+def result_bytes(scene) -> int:
+    """Upper estimate of the stored trajectory, uncompressed: the dense samples (time and
+    state; one period more than asked when t0 falls between sections), the section
+    points (time, state, contacts, max contact function), the classified orbit and a
+    fixed overhead."""
+    a = scene.analysis
+    dim = len(scene.system.state_names)
+    samples = (a.periods + 1) * a.samples_per_period + 1
+    sections = a.periods + 1
+    orbit = scene.integrator.max_orbit_period * dim
+    return 8 * (samples * (1 + dim) + sections * (3 + dim) + orbit) + OVERHEAD_BYTES
+
+
 def plan(scene, workers=None, chunk_size=None) -> str:
     a = scene.analysis
     state = ", ".join(f"{x:g}" for x in a.state)
     return (f"trajectory: {a.periods} periods from ({state}) at t0 = {a.t0:g}, "
-            f"{a.samples_per_period} samples per period")
+            f"{a.samples_per_period} samples per period; result at most "
+            f"{size_text(result_bytes(scene))}")
 
 
 PLOT = PlotSpec(
@@ -57,4 +92,5 @@ PLOT = PlotSpec(
                         "steady state (default: a quarter, <= 20).", kind="int>=1"),))
 
 KINDS = (AnalysisKind("trajectory", "one trajectory, recorded and classified", read, plan,
-                      run=run, plot=PLOT),)
+                      run=run, result_bytes=result_bytes, plot=PLOT,
+                      variables=("state", "time", "section_state", "section_time", "variable")),)

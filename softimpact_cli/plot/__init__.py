@@ -20,8 +20,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from ..analysis.attributes import attribute_list
 from ..analysis.stability import basin_stability
 from ..report.verification import verification_line
+from ..store.layout import memory_order
 from .basins_figure import draw_basins
 from .bifurcation_figure import draw_bifurcation
 from .catalogue_figure import draw_catalogue
@@ -108,6 +110,7 @@ def basins(ds, ax=None, *, max_panels: int = 36, show_error: bool = False) -> Fi
     ``max_panels``); an Axes for a result of one grid point. ``show_error``: print the
     measured label error at the foot (``error_note``)."""
 
+    ds = _in_memory_order(ds)
     if ds.attrs.get("ic_kind") != "plane":
         raise ValueError(f"plot.basins: needs a sweep over a plane of initial conditions, "
                          f"got a {ds.attrs.get('analysis')!r} result with "
@@ -124,7 +127,8 @@ def stability(ds, ax=None, *, against: str | None = None, show_error: bool = Fal
     right-hand axis; ``attractors``: a second panel with the section points of the
     attractors that are not periodic (``ax`` then a Figure or None)."""
 
-    swept = str(_expect(ds, "stability").attrs.get("grid_swept", "")).split()
+    ds = _expect(ds, "stability")
+    swept = attribute_list(ds.attrs, "grid_swept")
     axis = against or (swept[0] if swept else "c_c")
     if attractors:
         if ax is not None and not is_figure(ax):
@@ -145,7 +149,8 @@ def dcrit(ds, ax=None, *, combination: str | None = None) -> Figure:
     x1 - x2 traces (only ``combination``'s when given: a name of
     ``ds.combination_label``)."""
 
-    names = [str(n) for n in _expect(ds, "dcrit")["combination_label"].values]
+    ds = _expect(ds, "dcrit")
+    names = [str(n) for n in ds["combination_label"].values]
     if combination is not None and combination not in names:
         raise ValueError(f"combination: {combination!r} is not one of {', '.join(names)}")
     return draw_dcrit(ds, combination, ax)
@@ -169,7 +174,8 @@ def tipping(ds, ax=None, *, no_basins: bool = False, show_error: bool = False) -
     basins before and after (panels: before, after, matrix; ``no_basins`` or an Axes: the
     matrix alone). ``show_error``: the measured label error at the foot."""
 
-    fig = draw_tipping(_expect(ds, "tipping"), no_basins, ax)
+    ds = _expect(ds, "tipping")
+    fig = draw_tipping(ds, no_basins, ax)
     return error_note(fig, ds) if show_error else fig
 
 
@@ -200,8 +206,16 @@ KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation
 
 
 def _expect(ds, kind: str):
-    """``ds`` when it holds a ``kind`` result (or says nothing), else a ValueError."""
+    """``ds`` (in the in-memory dim order) when it holds a ``kind`` result (or says
+    nothing), else a ValueError."""
     found = ds.attrs.get("analysis")
     if found is not None and found != kind:
         raise ValueError(f"plot.{kind}: ds holds a {found!r} result, not a {kind} result")
-    return ds
+    return _in_memory_order(ds)
+
+
+def _in_memory_order(ds):
+    """A result as the figures index it: a plane's variables ending in (first axis,
+    second axis), whichever order it came in (``si.run`` and ``xarray.open_dataset``
+    hand it out in the file's order; ``store.layout``)."""
+    return memory_order(ds)

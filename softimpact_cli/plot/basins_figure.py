@@ -6,11 +6,13 @@ from math import ceil
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..analysis.labels import NONPERIODIC_KINDS, parse_label
 from ..config.axes import COUPLING_AXES
 from ..sweep.result import grid_axes, grid_dims, grid_point
 from .common import (
     PARAMETER_TEX,
+    is_figure,
     multiple_text,
     panel_letter,
     parameter_text,
@@ -87,7 +89,7 @@ def panel_title(ds, index: tuple[int, ...], axes=None) -> str:
 def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) -> str:
     """One title for the figure: model, plane, resolution, start time and every parameter
     that is the same in all panels (those that differ are in the panel titles)."""
-    a0, a1 = str(ds.attrs["ic_dims"]).split()
+    a0, a1 = attribute_list(ds.attrs, "ic_dims")
     variables = [str(v) for v in ds["variable"].values]
     fixed = ds.attrs.get("plane_fixed") or ", ".join(
         f"${AXIS_SYMBOLS.get(v, v)} = 0$" for v in variables if v not in (a0, a1))
@@ -123,7 +125,7 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    axes_names = str(ds.attrs["ic_dims"]).split()
+    axes_names = attribute_list(ds.attrs, "ic_dims")
     if ds.attrs.get("ic_kind") != "plane" or len(axes_names) != 2:
         raise ValueError("basin plots need initial conditions on a plane")
     a0, a1 = axes_names
@@ -145,6 +147,7 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
     i0, i1 = variables.index(a0), variables.index(a1)
     ncols = min(3, n_panels)
     nrows = ceil(n_panels / ncols)
+    own_axes = ax is not None and not is_figure(ax)  # the caller's Axes, in its own figure
     fig, panels = place_panels(ax, (nrows, ncols),
                                [divmod(k, ncols) for k in range(n_panels)],
                                figsize=(4.6 * ncols, 5.0 * nrows + 0.6))
@@ -194,7 +197,11 @@ def draw_basins(ds, max_panels: int = 36, ax=None):
     head = figure_title(ds, varying, (len(x), len(y)), n_panels)
     note = ("markers: each attractor's points at $t = t_0 + nT$, in its basin's colour; "
             "legend: basin, attractor, share of the plane")
-    if n_panels == 1:
+    if n_panels == 1 and own_axes:
+        # one panel among the caller's: its parameters only; the figure and the other
+        # panels are the caller's, and a five-line description on each would repeat
+        panels[0].set_title(panel_title(ds, (0,) * len(grid_shape), varying), fontsize=9)
+    elif n_panels == 1:
         title = panel_title(ds, (0,) * len(grid_shape), varying)
         head = head.replace("\n", (", " + title if title else "") + "\n", 1)
         panels[0].set_title(wrap_tex(f"{head}\n{note}", 75), fontsize=8)

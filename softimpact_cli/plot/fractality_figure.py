@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from .basins_figure import AXIS_SYMBOLS
 from .common import place_panels
 
@@ -59,8 +60,8 @@ def _wada(ax, ds, i: int) -> None:
                            "#8c564b"][: max(1, k - 1)] + (["#000000"] if k >= 2 else [])
                           ).with_extremes(bad="#eeeeee")  # cells inside a basin
     vertical, horizontal = ds["row"].values, ds["col"].values
-    a_v, a_h = str(ds.attrs.get("plane_axes", "y x")).split()
-    if str(ds.attrs.get("ic_dims", "")).split()[:1] == [a_v]:  # the plane's first axis
+    a_v, a_h = attribute_list(ds.attrs, "plane_axes", ("y", "x"))
+    if attribute_list(ds.attrs, "ic_dims")[:1] == [a_v]:  # the plane's first axis
         grid, vertical, horizontal, a_v, a_h = grid.T, horizontal, vertical, a_h, a_v
     im = ax.imshow(grid, origin="lower", aspect="auto", cmap=cmap, vmin=0.5,
                    vmax=max(k, 1) + 0.5 if k > 1 else 1.5, interpolation="nearest",
@@ -88,7 +89,7 @@ def draw_fractality(ds, max_panels: int = 8, ax=None):
         _uncertainty(axes[3 * i + 1], ds, i)
         _wada(axes[3 * i + 2], ds, i)
         axes[3 * i].set_title(_where(ds, i), fontsize=9, loc="left")
-    rows, cols = str(ds.attrs.get("plane_shape", "? ?")).split()
+    rows, cols = attribute_list(ds.attrs, "plane_shape", ("?", "?"))
     title = (f"{ds.attrs.get('model', '')}: basin entropy, uncertainty exponent and Wada "
              f"test on {rows} x {cols} planes")
     if ds.sizes["point"] > n:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..config import GRID_AXES
 from .basins_figure import SYMBOLS
 from .common import panel_letter, parameter_text, pi_ticks, place_panels, root_figure, start_text
@@ -66,7 +67,7 @@ def draw_map(ds, ax=None):
                 pi_ticks(axis, lo, hi)
         panel_letter(ax, k)
     kind = "random " if ds.attrs.get("ic_kind") == "random" else ""
-    n = int(np.prod([ds.sizes[d] for d in str(ds.attrs["ic_dims"]).split()]))
+    n = int(np.prod([ds.sizes[d] for d in attribute_list(ds.attrs, "ic_dims")]))
     fig.suptitle(f"{ds.attrs.get('model')} pair on a {len(x)} x {len(y)} grid, {n} {kind}"
                  f"initial conditions per point, {start_text(ds)}\n"
                  + parameter_text(ds, exclude=swept), fontsize=9)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..report.nonperiodic import nonperiodic_summary
 from .basins_figure import AXIS_SYMBOLS
 from .palette import colour_of
@@ -24,7 +25,7 @@ def draw_clouds(ds, ax, variables: tuple[int, int] = (0, 1)) -> None:
         cloud = ds["nonperiodic_cloud"].values[k]
         cloud = cloud[np.isfinite(cloud[:, 0])]
         where = ", ".join(f"{a}={v:.4g}" for a, v in row["at"].items()
-                          if a in str(ds.attrs.get("grid_swept", "")).split())
+                          if a in attribute_list(ds.attrs, "grid_swept"))
         shape = SHAPES[points.index(int(ds["nonperiodic_point"].values[k])) % len(SHAPES)]
         label = (f"{row['name']}{' (' + where + ')' if where else ''}: "
                  f"$\\lambda_1$ = {row['exponents'][0]:+.4f}")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..analysis.labels import latex_of, parse_label
 from ..sweep.result import grid_dims
 from .basins_figure import SYMBOLS
@@ -59,7 +60,7 @@ def draw_stability(ds, bs, against: str, ax=None, entropy: bool = False):
     if against == "phi":
         pi_ticks(ax.xaxis, float(xs.min()), float(xs.max()))
     t0_text = "" if against == "t0" else f"; {start_text(ds)}"
-    swept = set(str(ds.attrs.get("grid_swept", "")).split()) | {against}
+    swept = set(attribute_list(ds.attrs, "grid_swept")) | {against}
     ax.set_title(f"{ds.attrs.get('model')} pair, n = {bs.attrs['n']} samples per point, "
                  f"95% Wilson bands{t0_text}\n{parameter_text(ds, exclude=swept)}"
                  + (f"\nnot drawn: {len(never)} catalogue solution"

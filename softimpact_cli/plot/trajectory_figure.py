@@ -51,6 +51,10 @@ def draw_trajectory(ds, last_periods: int | None = None, ax=None):
         tail = st >= t_cut
         ax.plot(sy[tail, ix], sy[tail, iv], "o", ms=5, mfc="k", mec="w", zorder=3,
                 label="Poincaré points")
+        if "nonperiodic_cloud" in ds:  # the second stage's section points of its attractor
+            cloud = ds["nonperiodic_cloud"].values[0]
+            ax.plot(cloud[:, ix], cloud[:, iv], ".", ms=2, color="tab:purple", zorder=4,
+                    label=f"{ds.attrs.get('label', 'attractor')} (section)")
         ax.set_xlabel(f"${xl}$")
         ax.set_ylabel(f"${vl}$")
         ax.set_title(f"phase portrait, body {k + 1}" if pair else "phase portrait", fontsize=9)
@@ -97,13 +101,26 @@ def _title(ds) -> str:
     model = ds.attrs.get("model", "")
     bodies = int(ds.attrs.get("bodies", 1))
     return (f"{model} {'pair' if bodies == 2 else 'body'}: {parameter_text(ds)}; start at "
-            f"{start_text(ds)}")
+            f"{start_text(ds)}\n{outcome_text(ds)}")
+
+
+def outcome_text(ds) -> str:
+    """What the classification found: the attractor's name and Lyapunov exponents
+    (1/time) for a chaotic or quasi-periodic one, the period of an orbit, else the
+    outcome."""
+    a = ds.attrs
+    if "nonperiodic_exponents" in ds:
+        lam = ", ".join(f"{v:+.4f}" for v in ds["nonperiodic_exponents"].values[0])
+        return f"{a.get('label', a.get('outcome'))}: Lyapunov exponents {lam} /time"
+    if a.get("outcome") == "converged":
+        return f"converged: period {a.get('period')} T"
+    return str(a.get("outcome", ""))
 
 
 def _summary(ds) -> str:
     a = ds.attrs
     lines = [
-        f"outcome      {a.get('outcome')}",
+        f"outcome      {a.get('label', a.get('outcome'))}",
         f"period       {a.get('period')} T",
         f"periods used {a.get('periods_used')}",
         f"contacts/orbit {a.get('contacts_on_orbit')}",

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..analysis.stability import wilson_interval
 from ..config import ConfigError
 from ..config.axes import every_axis
@@ -74,8 +75,8 @@ def compare_sweeps(a, b, name_a: str, name_b: str) -> dict:
     _same(list(grid_dims(a)), list(grid_dims(b)), "grid layout", name_a, name_b)
     for axis in grid_axes(a):
         _same(a[axis].values, b[axis].values, f"grid axis {axis}", name_a, name_b)
-    ic_dims = str(a.attrs.get("ic_dims", "")).split()
-    _same(ic_dims, str(b.attrs.get("ic_dims", "")).split(), "initial-condition layout",
+    ic_dims = attribute_list(a.attrs, "ic_dims")
+    _same(ic_dims, attribute_list(b.attrs, "ic_dims"), "initial-condition layout",
           name_a, name_b)
     for dim in ic_dims:
         _same(a[dim].values, b[dim].values, f"initial conditions ({dim})", name_a, name_b)

@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..config.axes import GRID_AXES
 
 LN2 = math.log(2.0)
@@ -108,17 +109,18 @@ def _f(value, spec: str = ".3f") -> str:
 def fractality_lines(ds) -> list[str]:
     """The table ``info`` prints after the result's keys."""
     summary = fractality_summary(ds)["fractality"]
-    rows, cols = str(ds.attrs.get("plane_shape", "? ?")).split()
+    rows, cols = attribute_list(ds.attrs, "plane_shape", ("?", "?"))
     sizes = [int(n) for n in ds["box_size"].values]
     shown = [n for n in (sizes[0], 5, 10, sizes[-1]) if n in sizes]
     shown = sorted(set(shown))
-    cell = str(ds.attrs.get("cell_size", "")).split()
+    cell = [str(c) for c in attribute_list(ds.attrs, "cell_size")]
     out = [f"fractality of {len(summary)} plane(s) of {rows} x {cols} cells "
-           f"({' '.join(str(ds.attrs.get('plane_axes', '')).split())}; cell "
+           f"({' '.join(attribute_list(ds.attrs, 'plane_axes'))}; cell "
            f"{' x '.join(cell)}); every label its own basin",
            f"  S_b, S_bb at box sizes {', '.join(map(str, shown))} cells (all of "
            f"{sizes[0]}..{sizes[-1]} stored); alpha from f(r) over r = "
-           f"{ds.attrs.get('radii', '')} cells (95% fit interval); Wada by merging up to "
+           f"{' '.join(map(str, attribute_list(ds.attrs, 'radii')))} cells (95% fit "
+           f"interval); Wada by merging up to "
            f"r = {ds.attrs.get('wada_max_radius')} cells, tol {ds.attrs.get('wada_tol')}"]
     for p in summary:
         axes = GRID_AXES if int(ds.attrs.get("bodies", 2)) == 2 \

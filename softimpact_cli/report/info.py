@@ -6,17 +6,26 @@ import math
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
+from ..analysis.catalogue import search_shares
 from ..analysis.stability import basin_stability
 from ..config.axes import COUPLING_AXES
 from ..kernels import method_traits
-from ..kernels.codes import CLASSIFIED_BY, STATUS_TABLE
+from ..kernels.codes import (
+    BASE_WIDTH,
+    CLASSIFIED_BY,
+    NONPERIODIC_BASES,
+    STATUS_TABLE,
+    UNRESOLVED_LABEL,
+)
 from ..sweep.result import grid_axes, grid_dims, grid_point  # noqa: F401  (named here too)
 from .nonperiodic import nonperiodic_summary
 from .verification import verification_summary
 
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "catalogue_source", "t0_mode",
-    "analysis", "model", "bodies", "parameters", "outcome", "status_message", "period",
+    "analysis", "model", "bodies", "parameters", "outcome", "label", "status_message",
+    "classified_by", "second_stage", "period",
     "periods_used", "contacts_on_orbit", "max_penetration", "impacting", "t0",
     "integrator_resolved_method", "integrator_rtol", "integrator_atol",
     "integrator_steps_per_period", "integrator_locate_switches", "wall_s", "complete",
@@ -95,7 +104,8 @@ def dcrit_summary(ds) -> dict:
 
 
 def catalogue_summary(ds) -> dict:
-    """Attractors (number, period, amplitude, multipliers, share, points) and combinations."""
+    """Attractors (number, period, amplitude, multipliers, share of the one-body search,
+    points) and combinations."""
     attractors = []
     for i, number in enumerate(ds["attractor"].values):
         p = int(ds["attractor_period"].values[i])
@@ -107,7 +117,7 @@ def catalogue_summary(ds) -> dict:
             "amplitude": float(ds["attractor_amplitude"].values[i]),
             "multipliers": [[float(a), float(b)] for a, b in zip(re, im, strict=True)
                             if np.isfinite(a)],
-            "share": float(ds["attractor_share"].values[i]),
+            "search_share": float(search_shares(ds)[i]),
             "residual": float(ds["attractor_residual"].values[i]),
             "points": ds["attractor_points"].values[i, :p].tolist(),
         })
@@ -122,11 +132,11 @@ def format_catalogue(ds) -> str:
     """A plain-text table of a catalogue result."""
     summary = catalogue_summary(ds)
     lines = [f"{'attractor':10s} {'period':>6s} {'amplitude':>10s} {'|multipliers|':>20s} "
-             f"{'share':>7s} {'residual':>9s}"]
+             f"{'search':>7s} {'residual':>9s}"]
     for a in summary["attractors"]:
         mods = ", ".join(f"{np.hypot(*m):.4f}" for m in a["multipliers"])
         lines.append(f"{a['name']:10s} {a['period']:6d} {a['amplitude']:10.4f} {mods:>20s} "
-                     f"{a['share']:7.3f} {a['residual']:9.1e}")
+                     f"{a['search_share']:7.3f} {a['residual']:9.1e}")
     counts = summary["counts"]
     if counts:  # a sweep's stored catalogue keeps no sample counts
         lines.append("samples: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
@@ -141,7 +151,7 @@ def sweep_summary(ds) -> dict:
     codes = [int(c) for c in ds["label_code"].values]
     names = [str(n) for n in ds["label_name"].values]
     table = dict(zip(codes, names, strict=True))
-    ic_dims = str(ds.attrs.get("ic_dims", "")).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     label = ds["label"].transpose(*grid_dims(ds), *ic_dims).values
     grid_shape = label.shape[: len(grid_dims(ds))]
     flat = label.reshape(int(np.prod(grid_shape)), -1)
@@ -153,12 +163,17 @@ def sweep_summary(ds) -> dict:
         point["counts"] = {table[int(v)]: int(c) for v, c in zip(values, counts, strict=True)}
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)
-    status = ds["status"].values
-
-    totals = {"converged": 0, "unresolved": 0, "diverged": 0}
-    for code, count in zip(*np.unique(status, return_counts=True), strict=True):
-        totals[STATUS_TABLE[int(code)][0]] += int(count)
+    status = {}
+    if "status" in ds:  # (a result made by hand may hold labels only: no totals then)
+        totals = {"converged": 0, "unresolved": 0, "diverged": 0}
+        for code, count in zip(*np.unique(ds["status"].values, return_counts=True),
+                               strict=True):
+            totals[STATUS_TABLE[int(code)][0]] += int(count)
+        status["status"] = totals
     out = {}
+    named = unresolved_then_named(ds) if "status" in ds else None
+    if named is not None:
+        out["status_unresolved"] = named
     if "predicted_count" in ds:
         for k, index in enumerate(np.ndindex(*grid_shape)):
             sel = dict(zip(grid_dims(ds), index, strict=True))
@@ -177,7 +192,23 @@ def sweep_summary(ds) -> dict:
             "n": int(ds.attrs.get("n", label.size)),
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),
             "labels": {str(c): n for c, n in table.items()},
-            "points": points, "status": totals}
+            "points": points, **status}
+
+
+def unresolved_then_named(ds) -> dict | None:
+    """How the trajectories whose first pass ended unresolved (status) ended after the
+    second stage: {"named not periodic": n, "left unresolved": m}, or None when the
+    second stage named none (the status line then says all). A recurrent set keeps the
+    first pass's status; its label is the attractor's."""
+    status, label = ds["status"].values.ravel(), ds["label"].values.ravel()
+    first_unresolved = np.isin(status, [c for c, (what, _) in STATUS_TABLE.items()
+                                        if what == "unresolved"])
+    base = np.where(label > 0, label // BASE_WIDTH * BASE_WIDTH, -1)
+    named = first_unresolved & np.isin(base, list(NONPERIODIC_BASES.values()))
+    if not named.any():
+        return None
+    return {"named not periodic": int(named.sum()),
+            "left unresolved": int(np.sum(first_unresolved & (label == UNRESOLVED_LABEL)))}
 
 
 def incomplete_summary(header, done: int) -> dict:

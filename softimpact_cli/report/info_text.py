@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..config.axes import COUPLING_AXES, every_axis
 from .info import format_catalogue
 from .nonperiodic import nonperiodic_lines
@@ -23,7 +24,8 @@ NOT_FIXED = {
 SHOWN_ELSEWHERE = {"scene", "points", "stability", "labels", "attractors", "counts",
                    "combinations", "branches", "d_crit", "orbit", "variables", "target",
                    "best", "runners_up", "reference", "robustness", "verification", "tipping",
-                   "fractality", "spectra", "fatal_shock", "continuation", "nonperiodic"}
+                   "fractality", "spectra", "fatal_shock", "continuation", "nonperiodic",
+                   "status_unresolved"}
 
 
 def text(value) -> str:
@@ -42,11 +44,20 @@ def text(value) -> str:
 def _parameters(summary: dict, ds) -> str:
     """The fixed parameters: the kind's varied ones and a sweep's grid axes left out."""
     left_out = set(NOT_FIXED.get(summary.get("analysis"), ()))
-    left_out |= set(str(ds.attrs.get("grid_swept", "")).split())
+    left_out |= set(attribute_list(ds.attrs, "grid_swept"))
     kept = [p for p in str(summary["parameters"]).split(", ")
             if p.split("=", 1)[0] not in left_out]
     return ", ".join(f"{k}={float(v):.6g}" if _is_number(v) else f"{k}={v}"
                      for k, v in (p.split("=", 1) for p in kept))
+
+
+def _status_text(totals: dict, then: dict) -> str:
+    """The sweep's status line when the second stage named some first-pass unresolved
+    trajectories: "converged 0, unresolved 40 (first pass; then 40 named not periodic,
+    0 left unresolved), diverged 0"."""
+    return ", ".join(f"{key} {count}" + (f" (first pass; then {text(then)})"
+                                         if key == "unresolved" else "")
+                     for key, count in totals.items())
 
 
 def _is_number(v: str) -> bool:
@@ -83,6 +94,8 @@ def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:
             value = _parameters(summary, ds)
         elif key == "wall_s":
             value = f"{value:.2f} s" if isinstance(value, float) else value
+        elif key == "status" and "status_unresolved" in summary:
+            value = _status_text(value, summary["status_unresolved"])
         elif key == "steps_by_method" and all(isinstance(v, dict) for v in value.values()):
             value = "; ".join(f"{phase}: {text(v)}" for phase, v in value.items())  # per phase
         lines.append(f"{key:28s} {text(value)}")

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..config.axes import COUPLING_AXES
 from ..sweep.result import grid_dims, grid_point
 
 
@@ -13,7 +12,8 @@ def nonperiodic_summary(ds) -> list[dict]:
     kind, members and cells there, ``at`` (the grid point's values), exponents and stderr
     (1/time, largest first)."""
     out = []
-    shape = tuple(ds.sizes[d] for d in grid_dims(ds))
+    gridded = all(d in ds.sizes for d in grid_dims(ds))  # a trajectory has no grid
+    shape = tuple(ds.sizes[d] for d in grid_dims(ds)) if gridded else ()
     for i, name in enumerate(ds["nonperiodic_name"].values):
         point = int(ds["nonperiodic_point"].values[i])
         index = np.unravel_index(point, shape) if shape else ()
@@ -22,11 +22,20 @@ def nonperiodic_summary(ds) -> list[dict]:
             "kind": str(ds["nonperiodic_kind"].values[i]),
             "members": int(ds["nonperiodic_members"].values[i]),
             "cells": int(ds["nonperiodic_cells"].values[i]),
-            "at": grid_point(ds, tuple(int(k) for k in index)),
+            "at": _relevant(ds, grid_point(ds, tuple(int(k) for k in index))) if gridded
+            else {},
             "exponents": [float(v) for v in ds["nonperiodic_exponents"].values[i]],
             "stderr": [float(v) for v in ds["nonperiodic_stderr"].values[i]],
         })
     return out
+
+
+def _relevant(ds, point: dict) -> dict:
+    """The grid point's values of the axes that are parameters of the system (a body
+    without a stop has no d, phi, k_c, c_c) or swept (``grid_point`` gives every axis)."""
+    names = {item.partition("=")[0] for item in str(ds.attrs.get("parameters", "")).split(", ")}
+    return {k: v for k, v in point.items()
+            if k in names or ds.sizes.get(k, 1) > 1 or not isinstance(v, float)}
 
 
 def nonperiodic_lines(rows: list[dict]) -> list[str]:
@@ -38,9 +47,10 @@ def nonperiodic_lines(rows: list[dict]) -> list[str]:
            "cells, Lyapunov exponents +- standard error (1/time)"]
     for r in rows:
         where = ", ".join(f"{k}={v:.6g}" for k, v in r["at"].items()
-                          if k in COUPLING_AXES and isinstance(v, float))
+                          if k != "t0" and isinstance(v, float))  # the grid's axes
         spectrum = ", ".join(f"{v:+.4f}+-{e:.4f}" for v, e in zip(r["exponents"],
                                                                   r["stderr"], strict=True))
-        out.append(f"  {r['name']:{width}s}  {where}: {r['members']} trajectories, "
+        where = f"  {where}:" if where else ":"
+        out.append(f"  {r['name']:{width}s}{where} {r['members']} trajectories, "
                    f"{r['cells']} cells, [{spectrum}]")
     return out

@@ -42,29 +42,81 @@ def design_counts(ds: xr.Dataset) -> tuple[int, int, int] | None:
     return int(ds["n_samples"].values[ranked].sum()), total("unresolved"), total("diverged")
 
 
+def catalogue_search(ds: xr.Dataset) -> tuple[int, dict[str, int]]:
+    """(initial conditions, {outcome: count}) of the result's one-body catalogue search:
+    a sweep stores them as ``catalogue_n_samples`` and ``catalogue_count_*``, a
+    catalogue result as ``n_samples`` and ``count_*``."""
+    prefix = "catalogue_" if "catalogue_n_samples" in ds.attrs else ""
+    counts = {k: int(ds.attrs[f"{prefix}count_{k}"])
+              for k in ("converged", "unresolved", "diverged")
+              if f"{prefix}count_{k}" in ds.attrs}
+    return int(ds.attrs.get(f"{prefix}n_samples", 0)), counts
+
+
+def nonperiodic_attractors(ds: xr.Dataset) -> dict[str, int]:
+    """{name: trajectories} of the attractors that are not periodic the second stage named
+    in a result (the "settling" sets, left unresolved, are not attractors)."""
+    if "nonperiodic_code" not in ds:
+        return {}
+    out: dict[str, int] = {}
+    for code, name, members in zip(ds["nonperiodic_code"].values, ds["nonperiodic_name"].values,
+                                   ds["nonperiodic_members"].values, strict=True):
+        if int(code) != UNRESOLVED_LABEL:
+            out[str(name)] = out.get(str(name), 0) + int(members)
+    return out
+
+
+def _empty_catalogue(ds: xr.Dataset) -> bool:
+    return "attractor_name" in ds.variables and ds.sizes.get("attractor", 0) == 0
+
+
+def outcome_notes(ds: xr.Dataset) -> list[str]:
+    """Sentences (no prefix) that explain a result without faulting it: a catalogue search
+    without a periodic solution beside attractors that are not periodic, which the sweep's
+    second stage found (the search runs the first pass only, so it leaves their starts
+    unresolved)."""
+    found = nonperiodic_attractors(ds)
+    if not (_empty_catalogue(ds) and found):
+        return []
+    n, counts = catalogue_search(ds)
+    listed = ", ".join(f"{name} ({k} trajectories)" for name, k in found.items())
+    return [f"the catalogue search found no periodic solution among {n} initial conditions"
+            + (f" ({', '.join(f'{k} {v}' for k, v in counts.items())})" if counts else "")
+            + f"; the sweep's second stage found {len(found)} attractor"
+            + ("s" if len(found) > 1 else "") + f" that {'are' if len(found) > 1 else 'is'} "
+            f"not periodic: {listed}"]
+
+
 def outcome_warnings(ds: xr.Dataset, max_periods: int, threshold: float = THRESHOLD,
-                     shares: tuple[int, int, int] | None = None) -> list[str]:
+                     shares: tuple[int, int, int] | None = None,
+                     section_periods: int = 0) -> list[str]:
     """Sentences (no prefix) about unresolved or diverged shares above ``threshold`` and
     about an empty catalogue; empty when the result looks sound. ``shares``: the result's
     (trajectories, unresolved, diverged) as its kind counts them (``outcome_counts``;
-    ``kinds.results.outcome_warnings`` passes them), None where it has none."""
+    ``kinds.results.outcome_warnings`` passes them), None where it has none.
+    ``section_periods``: the second stage's budget after ``max_periods`` (0: off). An
+    empty catalogue beside attractors that are not periodic is no fault
+    (:func:`outcome_notes` says it)."""
     out = []
-    if "attractor_name" in ds.variables and ds.sizes.get("attractor", 0) == 0:
-        n = int(ds.attrs.get("n_samples", 0))
-        counts = ", ".join(f"{k} {int(ds.attrs[f'count_{k}'])}"
-                           for k in ("converged", "unresolved", "diverged")
-                           if f"count_{k}" in ds.attrs)
+    if _empty_catalogue(ds) and not nonperiodic_attractors(ds):
+        n, counts = catalogue_search(ds)
+        listed = ", ".join(f"{k} {v}" for k, v in counts.items())
         out.append(f"the catalogue found no solution among {n} initial conditions"
-                   + (f" ({counts})" if counts else "")
+                   + (f" ({listed})" if listed else "")
                    + f"; raise [integrator] max_periods (now {max_periods}) or check the scene")
     if shares is None or shares[0] == 0:
         return out
     n, unresolved, diverged = shares
-    what = {"unresolved": (unresolved, f"no period within max_periods = {max_periods}"),
+    budget = f"no period within max_periods = {max_periods}"
+    advice = "raise [integrator] max_periods or check the scene"
+    if section_periods > 0:
+        budget += (f", nor a period or a recurrent set in section_periods = "
+                   f"{section_periods} more")
+        advice = "raise [integrator] max_periods or section_periods, or check the scene"
+    what = {"unresolved": (unresolved, budget),
             "diverged": (diverged, "state non-finite or beyond [integrator] divergence_bound")}
     for name, (count, why) in what.items():
         if count / n > threshold:
             out.append(f"{100.0 * count / n:.1f}% of trajectories {name} ({why}); "
-                       + ("raise [integrator] max_periods or check the scene"
-                          if name == "unresolved" else "check the scene's parameters"))
+                       + (advice if name == "unresolved" else "check the scene's parameters"))
     return out

@@ -5,7 +5,8 @@ interval instead of a progress bar, e.g.
 
 The interval is ``SOFTIMPACT_PROGRESS_INTERVAL`` seconds (default 30); a last line is
 printed when the work is done. Fed with counts, or with a chunk's label codes (then the
-unresolved and diverged outcomes are counted too).
+unresolved and diverged outcomes are counted too, and the trajectories the second stage
+found on a recurrent set, coded ``PENDING`` until the parent names them).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
+from ..kernels.codes import DIVERGED_LABEL, PENDING, UNRESOLVED_LABEL
 from ..sweep.interrupt import received
 
 INTERVAL_ENV = "SOFTIMPACT_PROGRESS_INTERVAL"
@@ -57,7 +58,7 @@ class ProgressLines:
                  write: Callable[[str], None] | None = None):
         self.total, self.initial, self.unit = int(total), int(initial), unit
         self.done = int(initial)
-        self.unresolved = self.diverged = self.labelled = 0
+        self.unresolved = self.diverged = self.labelled = self.recurrent = 0
         self.interval = interval_s() if interval is None else float(interval)
         self._write = write or (lambda line: print(line, file=sys.stderr, flush=True))
         self._started = time.monotonic()
@@ -77,6 +78,7 @@ class ProgressLines:
             with self._lock:
                 self.unresolved += int(np.count_nonzero(codes == UNRESOLVED_LABEL))
                 self.diverged += int(np.count_nonzero(codes == DIVERGED_LABEL))
+                self.recurrent += int(np.count_nonzero(codes == PENDING))
                 self.labelled += n
         with self._lock:
             self.done += n
@@ -87,8 +89,8 @@ class ProgressLines:
 
     def line(self) -> str:
         with self._lock:
-            done, unresolved, diverged, labelled = (self.done, self.unresolved, self.diverged,
-                                                    self.labelled)
+            done, unresolved, diverged, labelled, recurrent = (
+                self.done, self.unresolved, self.diverged, self.labelled, self.recurrent)
         elapsed = time.monotonic() - self._started
         rate = (done - self.initial) / elapsed if elapsed > 0 else 0.0
         share = 100.0 * done / self.total if self.total else 100.0
@@ -103,6 +105,9 @@ class ProgressLines:
             parts.append(f"unresolved {unresolved} ({100.0 * unresolved / labelled:.2f}%)")
             if diverged:
                 parts.append(f"diverged {diverged} ({100.0 * diverged / labelled:.2f}%)")
+            if recurrent:  # the second stage's, named (chaotic A1...) after the last chunk
+                parts.append(f"on a recurrent set {recurrent} "
+                             f"({100.0 * recurrent / labelled:.2f}%, named at the end)")
         return ", ".join(parts)
 
     def _run(self) -> None:

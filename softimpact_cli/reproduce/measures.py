@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.attributes import attribute_list
 from ..analysis.labels import parse_label
 from ..analysis.stability import basin_stability, wilson_interval
 from ..config.axes import COUPLING_AXES
@@ -134,7 +135,7 @@ def plane_labels(ds, panel: int) -> tuple[np.ndarray, list[np.ndarray], dict[int
     """(labels (ny, nx) of grid point ``panel``, [first-axis values, second-axis values],
     {code: name}) of a basins result on a plane."""
     dims = grid_dims(ds)
-    ic_dims = str(ds.attrs.get("ic_dims", "")).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     label = ds["label"].transpose(*dims, *ic_dims).values
     label = label.reshape(-1, *label.shape[len(dims):])[panel]
     axes = [ds[d].values for d in ic_dims]

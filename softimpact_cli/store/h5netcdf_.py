@@ -24,7 +24,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..config import ConfigError
+from ..analysis.attributes import with_lists
+from ..config import ConfigError, space
+from .layout import file_order, memory_order
 from .lock import output_lock
 from .provenance import command_line
 from .xarray_dask import install as _lazy_dask
@@ -43,24 +45,6 @@ def _netcdf_safe(value):
     return value
 
 
-def _plane_axes(ds: xr.Dataset) -> tuple[str, str] | None:
-    """The two plane axes (in-memory order) of a plane-of-initial-conditions result."""
-    if ds.attrs.get("ic_kind") != "plane":
-        return None
-    axes = str(ds.attrs.get("ic_dims", "")).split()
-    return (axes[0], axes[1]) if len(axes) == 2 else None
-
-
-def _swap_plane(ds: xr.Dataset, order: tuple[str, str]) -> xr.Dataset:
-    """Transpose every variable ending in the plane axes so that they end in ``order``."""
-    pair = set(order)
-    out = ds.copy()
-    for name, var in ds.variables.items():
-        if len(var.dims) >= 2 and set(var.dims[-2:]) == pair and var.dims[-2:] != order:
-            out[name] = var.transpose(*var.dims[:-2], *order)
-    return out
-
-
 def file_attributes(attrs) -> dict:
     """Global attributes as a file stores them: netCDF-safe values, CF ``Conventions``."""
     out = {k: _netcdf_safe(v) for k, v in attrs.items()}
@@ -73,9 +57,7 @@ def file_dataset(ds: xr.Dataset) -> tuple[xr.Dataset, dict]:
     no fill value on coordinates, the plane axes swapped."""
     ds = ds.copy()
     ds.attrs = file_attributes(ds.attrs)
-    plane = _plane_axes(ds)
-    if plane is not None:
-        ds = _swap_plane(ds, plane[::-1])
+    ds = file_order(ds)
     encoding = {}
     for name, var in ds.variables.items():
         var.encoding = {}
@@ -91,7 +73,7 @@ def file_dataset(ds: xr.Dataset) -> tuple[xr.Dataset, dict]:
 
 def _free_bytes(folder: Path) -> int | None:
     try:
-        return shutil.disk_usage(folder).free
+        return space.free_bytes(folder)
     except OSError:
         return None
 
@@ -195,11 +177,12 @@ def update_attributes(path: str | os.PathLike, written, attrs) -> Path:
 
 def open_result(path: str | os.PathLike) -> xr.Dataset:
     """Open a result file fully into memory (the file is closed on return), in the
-    in-memory dim order."""
+    in-memory dim order, its list-valued attributes as lists (also those an older file
+    joined into one text: ``analysis.attributes``)."""
     with xr.open_dataset(path, engine=ENGINE) as ds:
         ds = ds.load()
-    plane = _plane_axes(ds)
-    return _swap_plane(ds, plane) if plane is not None else ds
+    ds.attrs = with_lists(ds.attrs)
+    return memory_order(ds)
 
 
 def add_attributes(path: str | os.PathLike, attrs: dict) -> None:

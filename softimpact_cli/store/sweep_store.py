@@ -46,6 +46,23 @@ class DamagedHeader(Exception):
     """A result header that exists but cannot be read; str: why."""
 
 
+# what every complete sweep result holds: one value per trajectory of each
+RESULT_VARIABLES = ("label", "status", "period")
+
+
+def result_problem(ds: xr.Dataset, n_total: int) -> str | None:
+    """What keeps ``ds``, read from a file whose ``complete`` attribute is 1, from being
+    the complete result of a sweep of ``n_total`` trajectories (None: nothing). A header
+    can say complete without being a result: a hand-made or hand-edited file, or one
+    whose variables were removed by another tool."""
+    for name in RESULT_VARIABLES:
+        if name not in ds:
+            return f"holds no {name!r} variable"
+        if ds[name].size != n_total:
+            return f"its {name!r} has {ds[name].size} values, not the run's {n_total}"
+    return None
+
+
 @dataclass(frozen=True)
 class RunIdentity:
     """What every chunk file of one sweep shares: the scene and the plan's cut."""

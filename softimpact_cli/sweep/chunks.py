@@ -13,7 +13,7 @@ import numpy as np
 from ..analysis.catalogue import Catalogue, label_orbit
 from ..analysis.engine import KnownOrbits, Problem, RecurrenceCells, classify_state
 from ..analysis.labels import code_of
-from ..analysis.section_follow import FAILED, PERIODIC, RECURRENT, follow_section
+from ..analysis.section_follow import FAILED, PERIODIC, RECURRENT, KnownSets, follow_section
 from ..config import Grid, IntegratorSettings
 from ..config.axes import catalogue_key
 from ..kernels.codes import (
@@ -115,8 +115,11 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     A trajectory the first pass leaves ``UNRESOLVED`` goes on to the second stage
     (``analysis.section_follow``, when ``section_periods > 0``): a periodic orbit it
     finds is labelled here; a recurrent set keeps ``UNRESOLVED_LABEL`` and is returned
-    in the ``second_stage.SECTION_ARRAYS`` for the parent to name. ``periods_used``
-    counts both stages; ``steps`` the first pass's only.
+    in the ``second_stage.SECTION_ARRAYS`` for the parent to name. With recurrence cells,
+    the recurrent sets found earlier in the same table's block are known
+    (``section_follow.KnownSets``): a trajectory whose section points land in one's
+    cells stops there. ``periods_used`` counts both stages; ``steps`` the first pass's
+    only.
     """
     n = stop - start
     out = {k: np.zeros(n, dtype=t) for k, t in RESULT_FIELDS.items()}
@@ -129,6 +132,8 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     cells = None
     summary: dict[int, tuple[int, int, float]] = {}  # code -> (period, contacts, max_pen)
     recurrent = []  # (flat, grid point, SectionFollow) of the second stage's recurrent ones
+    sets = None  # recurrent sets found earlier in the block (with the cells only: the
+    # verification, which turns cells off, follows every trajectory in full)
     current = -1
     catalogue: Catalogue | None = None
     for k in range(n):
@@ -143,6 +148,7 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
         if s.cell_size > 0.0 and (k == 0 or ic == 0 or flat % CELL_BLOCK == 0):
             cells = RecurrenceCells(s.cell_size, s.cell_hits, s.max_periods)
             summary = {}  # what cells name comes from this table's trajectories only
+            sets = KnownSets()  # the recurrent sets of this block, as the cells
         t0 = grid_t0 if ctx.t0 is None else float(ctx.t0[ic])
         cls = classify_state(problem, ctx.states[ic], t0, known, cells)
         how = BY_KNOWN_ORBIT if cls.captured != NO_ORBIT else BY_OWN_REPEAT
@@ -162,7 +168,7 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
         status, used = cls.status, cls.periods_used
         if cls.status == UNRESOLVED and s.section_periods > 0:  # the second stage
-            follow = follow_section(problem, ctx.states[ic], t0, cls.periods_used)
+            follow = follow_section(problem, ctx.states[ic], t0, cls.periods_used, sets)
             used += follow.periods
             if follow.outcome == FAILED:
                 status = follow.status
@@ -178,6 +184,8 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
                 how = BY_SECTION
                 contacts, max_pen = follow.contacts, follow.max_g
                 recurrent.append((flat, point, follow))
+                if sets is not None:
+                    sets.learn(follow)
         if cells is not None and cls.status == CONVERGED:
             cells.remember(cls, code)
         out["label"][k] = code

@@ -9,10 +9,13 @@ SIGTERM as the end, and ask the kernel to send them SIGTERM when the parent dies
 ``PR_SET_PDEATHSIG``; elsewhere a thread polls the parent's pid). A sweep that stops
 early (Ctrl-C, SIGTERM, an error) cancels what is queued and terminates its workers
 instead of waiting for the running chunks; a Dask run closes its client and cluster.
+A Dask cluster that stops running the chunks (closed, or without workers or scheduler)
+ends the run with ClusterLost, one line; the chunks written so far are kept.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import multiprocessing as mp
 import os
@@ -23,6 +26,8 @@ import time
 from collections.abc import Iterable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
+from ..config import ConfigError
+from . import interrupt
 from .chunks import SweepContext, run_chunk
 
 _CONTEXT: SweepContext | None = None  # a pool worker's copy, set once by its initializer
@@ -143,6 +148,36 @@ def _ignore_sigint_plugin():
     return IgnoreSigint()
 
 
+class ClusterLost(ConfigError):
+    """The Dask cluster stopped running the sweep's chunks: it was closed, or lost its
+    workers or its scheduler. The chunks written so far are kept (``resumable``: the
+    command line adds the resume command)."""
+
+    resumable = True
+
+
+@contextlib.contextmanager
+def sigint_blocked_in_new_processes() -> Iterator[None]:
+    """Within: SIGINT is blocked in this thread, so that the threads it starts, and the
+    processes they spawn (a LocalCluster's workers, which share the terminal's process
+    group), are born with it blocked: a Ctrl-C while they import would print a
+    KeyboardInterrupt traceback from each. A signal mask is inherited across fork and
+    exec; multiprocessing's resource tracker unblocks SIGINT in the thread that starts
+    it, so it is started first. Here a Ctrl-C waits until the block ends (run it within
+    ``interrupt.deferred()``)."""
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
 class DaskExecutor:
     """A Dask distributed cluster: ``tcp://host:port``, or ``local:N`` for a LocalCluster."""
 
@@ -152,20 +187,38 @@ class DaskExecutor:
     def describe(self) -> str:
         return f"dask scheduler {self.scheduler}"
 
+    def _lost(self, index: int | None, why: BaseException | str) -> ClusterLost:
+        """The one line of a chunk the cluster gave up (``why``: its reason, the first
+        line of its text or else its class)."""
+        text = str(why).strip().splitlines()[0][:160] if str(why).strip() else \
+            why.__class__.__name__
+        which = f"chunk {index}" if index is not None else "a chunk"
+        return ClusterLost(f"the Dask cluster {self.scheduler} stopped running {which} "
+                           f"({text}): it was closed, or lost its workers or scheduler")
+
     def run(self, context: SweepContext, chunks: Iterable[tuple[int, int, int]]
             ) -> Iterator[tuple[int, dict]]:
         from dask.distributed import Client, LocalCluster, as_completed
+        from distributed.scheduler import KilledWorker
 
         cluster = client = None
         finished = False
+        quiet = _QuietDaskLogs()
         try:  # from the start: an interrupted LocalCluster start is closed too
             if self.scheduler.startswith("local:"):
                 n = int(self.scheduler.split(":", 1)[1])
-                # ERROR: a Ctrl-C cancels running chunks, which workers would log as warnings
-                cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                       dashboard_address=None, silence_logs=logging.ERROR)
-                client = Client(cluster)
-                client.register_plugin(_ignore_sigint_plugin(), name="softimpact-ignore-sigint")
+                # a Ctrl-C waits for the start to end (then closes the cluster): cut in
+                # half, the start would leave workers behind
+                with interrupt.deferred(), sigint_blocked_in_new_processes():
+                    # CRITICAL: a Ctrl-C or a close cancels running chunks and cuts the
+                    # workers' heartbeats, which they would log as warnings and errors with
+                    # tracebacks (a chunk's own error reaches the sweep as its exception)
+                    cluster = LocalCluster(n_workers=n, threads_per_worker=1,
+                                           processes=True, dashboard_address=None,
+                                           silence_logs=logging.CRITICAL)
+                    client = Client(cluster)
+                    client.register_plugin(_ignore_sigint_plugin(),
+                                           name="softimpact-ignore-sigint")
             else:
                 client = Client(self.scheduler)
             shared = client.scatter(context, broadcast=True)
@@ -173,20 +226,52 @@ class DaskExecutor:
                                      f"{id(context)}", pure=False)
                        for index, start, stop in chunks]
             index_of = {f.key: int(f.key.split("-")[1]) for f in futures}
-            for future, result in as_completed(futures, with_results=True):
+            done = as_completed(futures, with_results=True)
+            while True:
+                try:
+                    future, result = next(done)
+                except StopIteration:
+                    break
+                except KilledWorker as exc:  # workers died running it, again and again
+                    raise self._lost(index_of.get(getattr(exc, "task", None)),
+                                     "the workers running it died") from None
+                if isinstance(result, BaseException):  # cancelled: the result is why
+                    raise self._lost(index_of[future.key], result) from None
                 yield index_of[future.key], result
             finished = True
         finally:  # on a remote scheduler, closing the client cancels what it still wants
-            # Interrupted: as_completed's gathers still in flight fail when the client
-            # closes, and tornado logs each with a traceback on the loop's thread; they
-            # are expected then, so that logger stays quiet (the process is ending).
-            if not finished:
-                logging.getLogger("tornado.application").setLevel(logging.CRITICAL)
-                logging.getLogger("distributed").setLevel(logging.CRITICAL)
+            # Interrupted or the cluster lost: as_completed's gathers still in flight fail
+            # when the client closes, and tornado logs each with a traceback on the loop's
+            # thread; they are expected then, so the loggers stay quiet (the process is
+            # ending, and ClusterLost or the interruption says what happened)
             if client is not None:
                 client.close()
             if cluster is not None:
                 cluster.close()
+            if finished:
+                quiet.restore()
+
+
+class _QuietDaskLogs:
+    """Dask's loggers (and tornado's and asyncio's, which log the errors of its callbacks
+    and tasks, e.g. a scatter cut by the cluster's close: "Task exception was never
+    retrieved") at CRITICAL while a sweep runs on a cluster: a cluster closed,
+    interrupted or left without workers logs warnings and tracebacks from its client,
+    scheduler and workers before the sweep can say in one line what happened
+    (ClusterLost, Interrupted); a worker's own error reaches the sweep as the chunk's
+    exception. ``restore()`` puts the levels back."""
+
+    def __init__(self):
+        names = ["tornado.application", "asyncio", "distributed",
+                 *(n for n in list(logging.root.manager.loggerDict)
+                   if n.startswith("distributed."))]
+        self.levels = {name: logging.getLogger(name).level for name in names}
+        for name in names:
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+
+    def restore(self) -> None:
+        for name, level in self.levels.items():
+            logging.getLogger(name).setLevel(level)
 
 
 def make_executor(workers: int | None, scheduler: str | None):

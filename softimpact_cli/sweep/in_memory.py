@@ -24,7 +24,7 @@ from .chunks import RESULT_FIELDS
 from .executors import make_executor
 from .plan import Plan, SweepSettings, chunk_size_for
 from .runner import keep_first_orbits, labelled_dataset, prepare_inputs
-from .second_stage import unpack
+from .second_stage import progress_codes, unpack
 
 
 def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | None = None,
@@ -60,7 +60,7 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
         keep_first_orbits(orbits, result["orbits"])
         recurrent += unpack(result)
         if tick:
-            tick(result["label"])
+            tick(progress_codes(result, start))
     ds = labelled_dataset(scene, inputs, arrays, orbits, recurrent)
     ds.attrs.update(provenance(scene, started, time.time(), time.perf_counter() - t0))
     ds.attrs.update({"n": plan.n_total, "n_chunks": plan.n_chunks, "chunk_size": plan.chunk_size,

@@ -32,6 +32,7 @@ RECHECK_S = 0.05  # how soon a deferred interruption is tried again
 UNSAFE_MODULES = ("llvmlite",)  # frames whose callers ignore an exception raised in them
 
 _received: int | None = None  # the first signal caught in the current block, if any
+_deferring = 0  # depth of ``deferred()`` blocks: within them the interruption waits
 
 
 class Interrupted(BaseException):
@@ -64,12 +65,28 @@ def _handler(signum, frame) -> None:
 
 def _raise_when_safe(frame, *_) -> None:
     """Raise the interruption received, or try again in RECHECK_S if ``frame`` is unsafe."""
-    if _received is None:
+    if _received is None or _deferring:
         return
     if _unsafe(frame) and hasattr(signal, "setitimer"):
         signal.setitimer(signal.ITIMER_REAL, RECHECK_S)
         return
     raise Interrupted(_received)
+
+
+@contextlib.contextmanager
+def deferred() -> Iterator[None]:
+    """Within: a signal is noted, not raised; it is raised when the block ends (an
+    ``Interrupted`` then, unless the block raised already). For a start that must not
+    be cut in half, such as a Dask cluster's, whose parts a half-done start would leave
+    running: once started, it is closed as any other."""
+    global _deferring
+    _deferring += 1
+    try:
+        yield
+    finally:
+        _deferring -= 1
+    if _received is not None and not _deferring:
+        raise Interrupted(_received)
 
 
 def received() -> int | None:
@@ -100,6 +117,7 @@ def raising_on_signals() -> Iterator[None]:
         signal.setitimer(signal.ITIMER_REAL, 0)
         for s, h in previous.items():
             signal.signal(s, h if h is not None else signal.SIG_DFL)
+        _received = None  # a later block (or code outside one) starts uninterrupted
 
 
 def interruption(exc: BaseException) -> Interrupted | None:

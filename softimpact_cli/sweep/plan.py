@@ -7,15 +7,14 @@ flat indices, so its results are slices of the final arrays.
 
 from __future__ import annotations
 
-import os
-import shutil
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..config import ConfigError, Scene
+from ..config import Scene
+from ..config.space import OVERHEAD_BYTES, check_disk, check_memory, size_text
 from .chunks import CELL_BLOCK
 
 # bytes per trajectory of the per-trajectory variables (label, status, period, periods_used,
@@ -24,7 +23,6 @@ BYTES_PER_IC = 4 + 1 + 2 + 4 + 4 + 4 + 1 + 4 + 4
 # labels assumed for the representative orbits (attractor_points: labels x grid points x
 # max_orbit_period x dim floats); catalogues of the study have at most a dozen
 LABELS_ESTIMATE = 16
-OVERHEAD_BYTES = 1 << 20  # catalogue, label tables, scene text, attributes, HDF5 headers
 
 
 @dataclass(frozen=True)
@@ -103,43 +101,19 @@ class Plan:
             swept = f"panels over {', '.join(g.swept)}"
         return (f"plan: {self.n_points} grid points ({swept}) x {self.n_ic} initial "
                 f"conditions = {self.n_total} trajectories in {self.n_chunks} chunks of "
-                f"<= {self.chunk_size}; result at most {_size(self.result_bytes)}")
+                f"<= {self.chunk_size}; result at most {size_text(self.result_bytes)}")
 
     def check_memory(self, source: str) -> None:
         """Refuse a result that would not fit in memory while assembled."""
-        need = self.result_bytes
-        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-        if 3 * need > memory:
-            raise ConfigError(f"{source}: [grid]/[initial_conditions]: the result needs at "
-                              f"most {_size(3 * need)} of memory while assembled, and this "
-                              f"machine has {_size(memory)}; reduce the grid or resolution")
+        check_memory(self.result_bytes, f"{source}: [grid]/[initial_conditions]",
+                     "reduce the grid or resolution")
 
     def check_resources(self, out: Path, source: str) -> None:
         """Refuse a result that would not fit in memory or on disk (estimates are upper
         bounds: the result is stored compressed). Call after ``check_writable``, which
         finds the paths that cannot be written at all."""
         self.check_memory(source)
-        need = self.result_bytes
-        folder = out.parent if str(out.parent) else Path(".")
-        while not folder.exists():
-            folder = folder.parent
-        try:
-            free = shutil.disk_usage(folder).free
-        except OSError as exc:
-            raise ConfigError(f"{out}: cannot tell the free disk space in {folder}: "
-                              f"{exc.strerror or exc.__class__.__name__}") from None
-        if 2 * need > free:
-            raise ConfigError(f"{out}: not enough disk space: the result needs at most "
-                              f"{_size(2 * need)} while written (chunk files and the final "
-                              f"file), and the file system of {folder} has {_size(free)} free")
-
-
-def _size(n: float) -> str:
-    for unit in ("B", "KiB", "MiB", "GiB", "TiB"):
-        if n < 1024:
-            return f"{n:.1f} {unit}"
-        n /= 1024
-    return f"{n:.1f} PiB"
+        check_disk(out, self.result_bytes, 2, "chunk files and the final file")
 
 
 def default_chunk_size(n_total: int, workers: int, block: int = 1) -> int:

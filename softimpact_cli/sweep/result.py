@@ -7,6 +7,7 @@ import re
 import numpy as np
 import xarray as xr
 
+from ..analysis.attributes import attribute_list
 from ..analysis.labels import latex_of, name_of
 from ..config import Scene, forcing_period
 from ..config.axes import GRID_AXES, axis_units
@@ -123,16 +124,16 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     attrs = {
         "analysis": scene.analysis.kind,
         "ic_kind": ic.kind,
-        "ic_dims": " ".join(ic.dims),
-        "grid_swept": " ".join(grid.swept),
-        "grid_dims": " ".join(grid.dims),
+        "ic_dims": list(ic.dims),  # lists: arrays in the file (analysis/attributes.py)
+        "grid_swept": list(grid.swept),
+        "grid_dims": list(grid.dims),
         **t0_attrs(coords["t0"][1], period, t0_per_sample is not None,
                    "t0" in grid.swept),
         "forcing_period": period,
-        "catalogue_names": "; ".join(names),
+        "catalogue_names": list(names),
     }
     if grid.parameters:  # model parameters swept besides GRID_AXES (their own dims)
-        attrs["grid_parameters"] = " ".join(grid.parameters)
+        attrs["grid_parameters"] = list(grid.parameters)
     if ic.kind == "plane":
         attrs["plane_fixed"] = ", ".join(f"{k}={v}" for k, v in (ic.fixed or {}).items())
     return xr.Dataset(data, coords=coords, attrs=attrs)
@@ -143,14 +144,16 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
 
 def grid_dims(ds) -> tuple[str, ...]:
     """The dims a sweep's grid points span: its swept model parameters and GRID_AXES, or
-    ("panel",)."""
-    return tuple(str(ds.attrs.get("grid_dims", " ".join(GRID_AXES))).split())
+    ("panel",); without those a selection took away (``ds.sel(d=10)`` keeps d as a
+    scalar coordinate)."""
+    dims = attribute_list(ds.attrs, "grid_dims", GRID_AXES)
+    return tuple(d for d in dims if d in ds.dims or d not in ds.coords)
 
 
 def grid_axes(ds) -> tuple[str, ...]:
     """Every axis with a value at each grid point: the model parameters the sweep spans
     besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES."""
-    return tuple(str(ds.attrs.get("grid_parameters", "")).split()) + GRID_AXES
+    return tuple(attribute_list(ds.attrs, "grid_parameters")) + GRID_AXES
 
 
 def grid_point(ds, index: tuple[int, ...]) -> dict:

@@ -19,13 +19,19 @@ from ..store import open_result
 from ..store.catalogues import scene_body_attractors
 from ..store.lock import output_lock
 from ..store.provenance import command_line, history_line, provenance
-from ..store.sweep_store import DamagedHeader, DamagedPart, RunIdentity, SweepStore
+from ..store.sweep_store import (
+    DamagedHeader,
+    DamagedPart,
+    RunIdentity,
+    SweepStore,
+    result_problem,
+)
 from ..systems.base import check_bodies
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
 from .plan import Plan, chunk_size_for
 from .result import sweep_dataset
-from .second_stage import relabel, unpack
+from .second_stage import progress_codes, relabel, unpack
 
 
 def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ...]]:
@@ -125,6 +131,20 @@ class SweepInputs:
     context: SweepContext
 
 
+def empty_catalogue_line(catalogue: Catalogue, second_stage: bool) -> str:
+    """What a sweep says before its chunks when the catalogue search found no periodic
+    non-impacting solution: how its starts ended, and what the labels can still be (the
+    search runs the first pass only, so a chaotic attractor leaves its starts
+    unresolved there, and the sweep's second stage names it)."""
+    counts = ", ".join(f"{k} {v}" for k, v in catalogue.counts.items())
+    later = ("impacting periodic orbits, attractors that are not periodic (the second "
+             "stage names them after the last chunk), unresolved or diverged" if second_stage
+             else "impacting periodic orbits, unresolved or diverged")
+    return (f"catalogue: no periodic non-impacting solution among {catalogue.n_samples} "
+            f"initial conditions ({counts}; the search runs the first pass only); labels "
+            f"will be {later}")
+
+
 def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
                    ) -> SweepInputs:
     """The catalogues, names and worker context of a sweep scene (says what it found)."""
@@ -134,8 +154,8 @@ def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
                            str(scene.source))
     echo(f"catalogue search: {next(iter(catalogues.values())).source}")
     echo(f"catalogue: {len(names)} solutions: {', '.join(names)}" if names else
-         "catalogue: no non-impacting solution found (every label will be impacting, "
-         "unresolved or diverged)")
+         empty_catalogue_line(next(iter(catalogues.values())),
+                              scene.integrator.section_periods > 0))
     ic = scene.initial_conditions
     t0_per_sample = None
     if ic.t0 is None:
@@ -170,6 +190,9 @@ def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: di
     catalogue_vars = catalogue_dataset(inputs.first, scene.system, scene.integrator)
     ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
     ds.attrs["catalogue_source"] = inputs.first.source  # "computed" or "cache <key>"
+    # the search's own counts (the merge keeps the sweep's attrs): report/outcomes.py
+    ds.attrs["catalogue_n_samples"] = inputs.first.n_samples
+    ds.attrs.update({f"catalogue_count_{k}": v for k, v in inputs.first.counts.items()})
     return ds
 
 
@@ -278,18 +301,25 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
     if resume:
         try:
             header, damaged = store.header(), None
-        except DamagedHeader as why:
-            header, damaged = None, str(why)
+        except DamagedHeader as why:  # damaged: what is wrong with the header, if anything
+            header, damaged = None, f"is unreadable ({why})"
         if header is not None and header.attrs.get("scene_sha256") != scene.sha256:
             raise ConfigError(f"{out}: was started from another scene (hash differs); "
                               "resume with the same scene, or --overwrite")
         if header is not None and int(header.attrs.get("complete", 0)) == 1:
+            # the chunks go only once the result they belong to is checked complete
+            problem = result_problem(header, Plan(scene, size).n_total)
+            if problem is None:
+                if not store.parts.exists():
+                    raise ConfigError(f"{out}: is complete already; nothing to resume")
+                store.remove_parts()
+                echo(f"resume: {out} is complete; removed the chunk folder {store.parts} "
+                     "that an interrupted clean-up left behind")
+                return open_result(out)
             if not store.parts.exists():
-                raise ConfigError(f"{out}: is complete already; nothing to resume")
-            store.remove_parts()
-            echo(f"resume: {out} is complete; removed the chunk folder {store.parts} that an "
-                 "interrupted clean-up left behind")
-            return open_result(out)
+                raise ConfigError(f"{out}: says it is complete but {problem}, and no chunk "
+                                  "files are kept; pass --overwrite to compute it again")
+            header, damaged = None, f"says it is complete but {problem}"
         if header is not None:
             size = int(header.attrs["chunk_size"])
             _check_chunk_size(chunk_size, size, out)
@@ -298,12 +328,11 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
             if stored:
                 _check_chunk_size(chunk_size, stored, out)
                 size = stored
-            echo(f"resume: the result header {out} is "
-                 f"{f'unreadable ({damaged})' if damaged else 'missing'}; rewriting it and "
-                 "keeping the chunk files that verify")
+            echo(f"resume: the result header {out} {damaged or 'is missing'}; rewriting it "
+                 "and keeping the chunk files that verify")
         else:
-            echo(f"resume: the result header {out} is unreadable ({damaged}); starting a new "
-                 "run" if damaged else f"nothing to resume at {out}; starting a new run")
+            echo(f"resume: the result header {out} {damaged}; starting a new run" if damaged
+                 else f"nothing to resume at {out}; starting a new run")
             resume = False
     else:
         refuse_existing(out, overwrite)
@@ -346,8 +375,8 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
             if store.ensure_parts():
                 echo(f"the chunk folder {store.parts} vanished during the run; recreated it")
             store.write_chunk(index, result, identity, session)
-            if tick:
-                tick(result["label"])  # codes: progress counts the unresolved too
+            if tick:  # codes: progress counts the unresolved and the recurrent too
+                tick(progress_codes(result, plan.chunk(index)[0]))
         if len(store.done() & set(range(plan.n_chunks))) < plan.n_chunks:
             continue
         try:

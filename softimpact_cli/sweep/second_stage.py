@@ -17,17 +17,21 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.engine import Problem
-from ..analysis.lyapunov import lyapunov_spectrum
-from ..analysis.nonperiodic import Recurrent, attractor_table, identify, known_attractors
+from ..analysis.nonperiodic import (
+    Recurrent,
+    attractor_table,
+    identify,
+    known_attractors,
+    section_spectrum,
+)
 from ..analysis.section_follow import SectionFollow
+from ..kernels.codes import PENDING
 from ..systems import get_system
 
 SECTION_ARRAYS = ("section_flat", "section_point", "section_ncells", "section_cells",
                   "section_ncloud", "section_cloud", "section_impacting", "section_end",
                   "section_end_t")
 ORBIT_CLOUD = 200  # section points per recurrent attractor kept for plots (attractor_points)
-LYAPUNOV_TRANSIENT = 20  # periods to align the tangent vectors before averaging
-LYAPUNOV_SEGMENTS = 10
 
 
 def pack(found: list[tuple[int, int, SectionFollow]], dim: int) -> dict[str, np.ndarray]:
@@ -46,6 +50,17 @@ def pack(found: list[tuple[int, int, SectionFollow]], dim: int) -> dict[str, np.
                         else np.zeros((0, dim))),
         "section_end_t": np.array([f.end_time for _, _, f in found], dtype=np.float64),
     }
+
+
+def progress_codes(result: dict, start: int) -> np.ndarray:
+    """A chunk's label codes for the progress line, its recurrent trajectories (still
+    ``UNRESOLVED_LABEL`` in the chunk, named after the last one) as ``PENDING``: the line
+    counts them apart from those left unresolved. ``start``: the chunk's first flat index."""
+    codes = np.array(result["label"], copy=True)
+    flat = result.get("section_flat")
+    if flat is not None and len(flat):
+        codes[np.asarray(flat) - start] = PENDING
+    return codes
 
 
 def unpack(arrays: dict) -> list[Recurrent]:
@@ -75,14 +90,11 @@ def relabel(context, labels: np.ndarray, orbits: dict, found: list[Recurrent],
     integrator settings); ``known``: a result whose attractors keep their codes."""
     found = sorted(found, key=lambda r: r.flat)
     s = context.integrator
-    periods = -(-s.section_lyapunov_periods // LYAPUNOV_SEGMENTS) * LYAPUNOV_SEGMENTS
 
     def spectrum(point: int, state: np.ndarray, t: float):
         values, _ = context.point_values(point)
-        problem = Problem(get_system(context.model, context.bodies), values, s)
-        sp = lyapunov_spectrum(problem, state, t, periods=periods,
-                               transient=LYAPUNOV_TRANSIENT, segments=LYAPUNOV_SEGMENTS)
-        return sp.exponents, sp.stderr
+        return section_spectrum(Problem(get_system(context.model, context.bodies), values, s),
+                                state, t)
 
     seeds = known_attractors(known, s.section_cell)
     codes, attractors = identify(found, spectrum, s.section_zero_exponent, seeds)

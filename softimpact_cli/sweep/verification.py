@@ -46,7 +46,7 @@ from ..config import IntegratorSettings, Scene, VerificationSettings
 from ..store import add_attributes, open_result, update_attributes, write_result
 from ..store.lock import output_lock
 from ..store.provenance import command_line
-from ..store.sweep_store import DamagedHeader, SweepStore
+from ..store.sweep_store import DamagedHeader, SweepStore, result_problem
 from .check import check_sweep, tightened
 from .executors import make_executor
 from .pilot import choose_tolerance, scene_as_run
@@ -317,14 +317,16 @@ def remove_redo_files(out: Path) -> None:
         SweepStore(redo_path(out, rung)).remove()
 
 
-def pending(out: Path) -> bool:
-    """Whether ``out`` is a complete sweep whose verification was interrupted."""
+def pending(out: Path, n_total: int) -> bool:
+    """Whether ``out`` is a complete sweep of ``n_total`` trajectories whose verification
+    was interrupted (a header that only says it is complete is left to the resume)."""
     try:
         header = SweepStore(out).header()
     except DamagedHeader:
         return False
     return (header is not None and int(header.attrs.get("complete", 0)) == 1
-            and str(header.attrs.get("verify_status", "")) == PENDING)
+            and str(header.attrs.get("verify_status", "")) == PENDING
+            and result_problem(header, n_total) is None)
 
 
 def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | None = None,
@@ -336,7 +338,7 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
     with output_lock(out, command_line()):
         enabled = verify and (scene.verification is None or scene.verification.enabled)
         executor = make_executor(run_options.get("workers"), run_options.get("scheduler"))
-        if resume and pending(out):
+        if resume and pending(out, scene.grid.size * scene.initial_conditions.count):
             echo(f"resume: {out} is complete; finishing its verification")
             ds = open_result(out)
             scene = scene_as_run(scene, ds.attrs)

@@ -34,3 +34,22 @@ def test_recurrences_fire_after_the_needed_revisits_only():
     assert rule.feed(cells[:5]) == -1  # two revisits so far
     assert Recurrences(3).feed(cells) == 5  # the third consecutive revisit, row 5
     assert Recurrences(3).feed(cell_indices(np.arange(50.0)[:, None], 1.0)) == -1  # drifting
+
+
+def test_known_sets_stop_on_the_first_set_reaching_the_run():
+    from softimpact_cli.analysis.section_follow import KnownSets, SectionFollow
+
+    def found(cells, known_set=-1):
+        cells = np.array(cells, dtype=np.int64)
+        return SectionFollow("recurrent", 0, 0, np.zeros((0, 1)), cells, np.zeros((0, 1)), 0,
+                             -np.inf, np.zeros(1), 0.0, known_set)
+
+    sets = KnownSets()
+    sets.learn(found([[0], [1]]))
+    sets.learn(found([[5], [6]]))
+    sets.learn(found([[2]], known_set=0))  # a trajectory found on set 0 widens it
+    assert sets.cells == [{(0,), (1,), (2,)}, {(5,), (6,)}] and len(sets) == 2
+    runs = []
+    assert sets.landed(np.array([[0], [2], [9], [5]]), runs, 3) == (-1, -1)
+    assert runs == [0, 1]  # the 9 broke set 0's run; set 1's has begun
+    assert sets.landed(np.array([[6], [5], [1]]), runs, 3) == (1, 1)  # 5, 6, 5: set 1

@@ -254,3 +254,24 @@ def test_every_shipped_scene_parses():
     assert len(scenes) >= 20
     for path in scenes:
         load_scene(path)
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("[system]\nmodel = 'duffing'\n",
+     "<string>: [analysis]: missing; a scene without it is one trajectory (kind = "
+     "\"trajectory\"), which needs [analysis] state = [x1, v1, x2, v2] (the initial state); "
+     "or set [analysis] kind"),
+    ("[system]\nmodel = 'duffing'\n[initial_conditions]\nkind = 'plane'\n",
+     "<string>: [analysis]: missing; a scene without it is one trajectory (kind = "
+     "\"trajectory\"), which needs [analysis] state = [x1, v1, x2, v2] (the initial state); "
+     "for a sweep over [initial_conditions] set [analysis] kind = \"basins\", \"stability\" "
+     "or \"map\""),
+    ("[system]\nmodel = 'duffing'\n[analysis]\nperiods = 10\n",
+     "<string>: [analysis] state: is required: the initial x1, v1, x2, v2 (no kind is set: "
+     "the scene is one trajectory, the default kind)"),
+], ids=["no analysis", "no analysis, a plane", "no kind"])
+def test_a_scene_without_analysis_names_the_missing_section(text, expected):
+    # issue 31, item 11: the message was "[analysis] state: is required" alone
+    with pytest.raises(ConfigError) as caught:
+        parse_scene(text)
+    assert str(caught.value).startswith(expected), str(caught.value)

@@ -156,7 +156,7 @@ def test_modes_are_read_off_the_right_hand_side():
 ])
 def test_systems_that_are_not_piecewise_linear_are_refused(model, coupling, message):
     text = (f'[system]\nmodel = "{model}"\nbodies = 2\n[coupling]\n{coupling}'
-            '[integrator]\nmethod = "exact"\n')
+            '[integrator]\nmethod = "exact"\n[analysis]\nstate = [0.1, 0.0, 0.2, 0.0]\n')
     with pytest.raises(ConfigError, match=r"\[integrator\] method = \"exact\".*" + message):
         parse_scene(text)
 
@@ -164,7 +164,7 @@ def test_systems_that_are_not_piecewise_linear_are_refused(model, coupling, mess
 def test_the_plain_scheme_is_refused():
     with pytest.raises(ConfigError, match="locate_switches"):
         parse_scene('[system]\nmodel = "bilinear"\n[integrator]\nmethod = "exact"\n'
-                    "locate_switches = false\n")
+                    "locate_switches = false\n[analysis]\nstate = [0.1, 0.0, 0.2, 0.0]\n")
 
 
 def test_variational_equations_fall_back_to_dopri5():

@@ -85,7 +85,9 @@ def test_a_one_panel_figure_draws_on_one_axes():
     fig = Figure()
     ax = fig.subplots()
     assert plot.basins(basins(phis=(0.0,)), ax=ax) is fig
-    assert len(fig.axes) == 1 and ax.images and "basins on" in ax.get_title()
+    # on the caller's Axes: that panel's parameters in one line (issue 31.12), not the
+    # description a figure of its own carries
+    assert len(fig.axes) == 1 and ax.images and ax.get_title() == r"$d = 9$, $\varphi = 0$"
     fig, ax = Figure(), None
     ax = fig.subplots()
     assert plot.stability(stability_sweep(), ax=ax) is fig and ax.lines

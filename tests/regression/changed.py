@@ -22,7 +22,7 @@ import numpy as np
 
 from softimpact_cli.analysis.labels import parse_label
 from softimpact_cli.kernels.codes import UNRESOLVED_LABEL
-from tests.regression.reference import SCENES, STORE, arrays_of, differences, run_scene
+from tests.regression.reference import SCENES, arrays_of, differences, load_stored, run_scene
 
 LABEL_TABLE = ("label_code", "label_name", "label_latex", "label_index")
 
@@ -112,8 +112,7 @@ def main(names: list[str]) -> int:
             if name not in names:
                 continue
             now = arrays_of(run_scene(scene, options, Path(tmp) / f"{name}.h5"))
-            with np.load(STORE / f"{name}.npz") as f:
-                stored = {k: f[k] for k in f.files}
+            stored = load_stored(name)
             if not differences(stored, now):
                 print(f"{name}: identical", flush=True)
                 continue

@@ -67,6 +67,18 @@ def arrays_of(ds) -> dict[str, np.ndarray]:
     return out
 
 
+# Variables renamed since the references were written (stored name -> name now): the
+# same results under a clearer name, compared under the new one. attractor_share: each
+# attractor's share of the one-body search, which read like a basin share (issue 31.12).
+RENAMED = {"attractor_share": "attractor_search_share"}
+
+
+def load_stored(name: str) -> dict[str, np.ndarray]:
+    """The stored reference of scene ``name``, its variables under today's names."""
+    with np.load(STORE / f"{name}.npz") as f:
+        return {RENAMED.get(k, k): f[k] for k in f.files}
+
+
 def digest(values: np.ndarray) -> str:
     return hashlib.sha256(np.ascontiguousarray(values).tobytes()).hexdigest()[:16]
 
@@ -109,8 +121,7 @@ def compare(names: list[str] | None = None) -> int:
             if names and name not in names:
                 continue
             now = arrays_of(run_scene(scene, options, Path(tmp) / f"{name}.h5"))
-            with np.load(STORE / f"{name}.npz") as f:
-                stored = {k: f[k] for k in f.files}
+            stored = load_stored(name)
             problems = differences(stored, now)
             bitwise = all(digest(stored[k]) == digest(now[k]) for k in stored if k in now)
             failed += bool(problems)

@@ -29,7 +29,7 @@ def test_basin_scene_structure(name, tmp_path):
     scene = tiny(load_scene(FIGURES / name))
     ds = run_sweep(scene, tmp_path / "r.h5", workers=1)
     names = [str(n) for n in ds["label_name"].values]
-    catalogue = ds.attrs["catalogue_names"].split("; ")
+    catalogue = ds.attrs["catalogue_names"]  # a list (analysis/attributes.py)
     assert names[: len(catalogue)] == catalogue
     for n in names:
         parse_label(n)  # every label is one of the study's names

@@ -5,14 +5,20 @@ at commit b0c8a8d): labels, statuses, periods and counters identical, floats to 
 import numpy as np
 import pytest
 
-from tests.regression.reference import SCENES, STORE, arrays_of, differences, run_scene
+from tests.regression.reference import (
+    SCENES,
+    STORE,
+    arrays_of,
+    differences,
+    load_stored,
+    run_scene,
+)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name,scene,options", SCENES, ids=[s[0] for s in SCENES])
 def test_scene_reproduces_stored_result(name, scene, options, tmp_path):
-    with np.load(STORE / f"{name}.npz") as f:
-        stored = {k: f[k] for k in f.files}
+    stored = load_stored(name)
     now = arrays_of(run_scene(scene, options, tmp_path / f"{name}.h5"))
     assert differences(stored, now) == []
 

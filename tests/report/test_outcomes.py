@@ -82,3 +82,69 @@ def test_a_sweep_that_resolves_nothing_warns_and_strict_fails_after_writing(tmp_
     assert "softimpact: warning: the catalogue found no solution among" in strict.stderr
     with xr.open_dataset(out) as ds:  # written all the same
         assert ds.attrs["complete"] == 1 and (ds["label"] == UNRESOLVED_LABEL).all()
+
+
+def _chaotic_sweep(settling=False):
+    """A one-body stability sweep whose catalogue search (first pass only) found nothing
+    and whose second stage named every trajectory chaotic A1 (or left one settling)."""
+    from softimpact_cli.kernels.codes import CHAOTIC_BASE, UNRESOLVED
+
+    labels = [CHAOTIC_BASE + 1] * 39 + [UNRESOLVED_LABEL if settling else CHAOTIC_BASE + 1]
+    rows = [(CHAOTIC_BASE + 1, "chaotic A1", 39 + (not settling))]
+    if settling:
+        rows.append((UNRESOLVED_LABEL, "unresolved (settling)", 1))
+    return xr.Dataset(
+        {"label": (("sample",), np.array(labels, dtype=np.int32)),
+         "status": (("sample",), np.full(40, UNRESOLVED, dtype=np.int8)),
+         "attractor_name": (("attractor",), np.array([], dtype=object)),
+         "nonperiodic_code": (("nonperiodic",), [r[0] for r in rows]),
+         "nonperiodic_name": (("nonperiodic",), [r[1] for r in rows]),
+         "nonperiodic_members": (("nonperiodic",), [r[2] for r in rows])},
+        attrs={"analysis": "stability", "catalogue_n_samples": 456,
+               "catalogue_count_converged": 0, "catalogue_count_unresolved": 456,
+               "catalogue_count_diverged": 0})
+
+
+def test_an_empty_catalogue_beside_a_chaotic_attractor_is_a_note_not_a_warning():
+    """Issue 31, item 3: no "found no solution among 0 initial conditions; raise
+    max_periods" when the sweep found the attractor chaotic."""
+    from softimpact_cli.report.outcomes import outcome_notes
+
+    ds = _chaotic_sweep()
+    assert outcome_warnings(ds, 3000, section_periods=4000) == []
+    (note,) = outcome_notes(ds)
+    assert note == ("the catalogue search found no periodic solution among 456 initial "
+                    "conditions (converged 0, unresolved 456, diverged 0); the sweep's "
+                    "second stage found 1 attractor that is not periodic: chaotic A1 "
+                    "(40 trajectories)")
+    # the settling set is no attractor: it is not listed, and the one trajectory left
+    # unresolved is below the warning's share
+    (note,) = outcome_notes(_chaotic_sweep(settling=True))
+    assert note.endswith("chaotic A1 (39 trajectories)")
+
+
+def test_a_sweeps_empty_catalogue_counts_its_search():
+    ds = _chaotic_sweep().drop_vars(["nonperiodic_code", "nonperiodic_name",
+                                     "nonperiodic_members"])
+    ds["label"][:] = UNRESOLVED_LABEL
+    catalogue, share = outcome_warnings(ds, 3000, section_periods=4000)
+    assert catalogue.startswith("the catalogue found no solution among 456 initial "
+                                "conditions (converged 0, unresolved 456, diverged 0); "
+                                "raise [integrator] max_periods (now 3000)")
+    assert share == ("100.0% of trajectories unresolved (no period within max_periods = "
+                     "3000, nor a period or a recurrent set in section_periods = 4000 more); "
+                     "raise [integrator] max_periods or section_periods, or check the scene")
+
+
+def test_info_tells_named_from_left_unresolved():
+    from softimpact_cli.report.info import unresolved_then_named
+    from softimpact_cli.report.info_text import _status_text
+
+    then = unresolved_then_named(_chaotic_sweep(settling=True))
+    assert then == {"named not periodic": 39, "left unresolved": 1}
+    assert _status_text({"converged": 0, "unresolved": 40, "diverged": 0}, then) == (
+        "converged 0, unresolved 40 (first pass; then named not periodic 39, left "
+        "unresolved 1), diverged 0")
+    plain = _chaotic_sweep()
+    plain["label"][:] = UNRESOLVED_LABEL
+    assert unresolved_then_named(plain) is None  # nothing named: the plain status line

@@ -52,3 +52,18 @@ def test_close_returns_only_when_the_timer_thread_has_ended():
     finished = ProgressLines(2, interval=60, write=lambda line: None)
     finished(2)  # reaching the total closes it
     assert not finished._thread.is_alive()
+
+
+def test_recurrent_trajectories_are_not_counted_unresolved():
+    """The second stage's recurrent trajectories keep UNRESOLVED_LABEL in their chunk until
+    the parent names them (chaotic A1...): the line counts them apart (issue 31, item 3)."""
+    from softimpact_cli.sweep.second_stage import progress_codes
+
+    result = {"label": np.array([0, UNRESOLVED_LABEL, UNRESOLVED_LABEL, UNRESOLVED_LABEL]),
+              "section_flat": np.array([101, 103])}  # flat indices; the chunk starts at 100
+    codes = progress_codes(result, 100)
+    assert result["label"][1] == UNRESOLVED_LABEL  # the chunk's own codes untouched
+    lines = []
+    ProgressLines(4, interval=60, write=lines.append)(codes)
+    assert "unresolved 1 (25.00%)" in lines[-1]
+    assert "on a recurrent set 2 (50.00%, named at the end)" in lines[-1]

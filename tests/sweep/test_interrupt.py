@@ -69,3 +69,19 @@ def test_ordinary_errors_are_not_interruptions():
 def test_a_sweep_interrupted_before_its_header_kept_nothing(tmp_path):
     out = tmp_path / "r.h5"
     assert interrupt.sweep_kept(out, "s.toml") == f"nothing written to {out}"
+
+
+def test_within_deferred_the_interruption_waits_for_the_block_to_end():
+    # a Dask cluster's start (sweep/executors.py): cut in half it would leave workers
+    finished = []
+    with pytest.raises(interrupt.Interrupted) as caught:
+        with interrupt.raising_on_signals():
+            with interrupt.deferred():
+                os.kill(os.getpid(), signal.SIGINT)
+                _busy(0.3)
+                finished.append(True)
+            _busy(5)
+    assert finished == [True] and caught.value.status == 130
+    assert interrupt.received() is None  # the next block starts uninterrupted
+    with interrupt.deferred():  # outside a block: nothing to raise
+        pass

@@ -172,3 +172,83 @@ def test_progress_lines_when_stderr_is_not_a_terminal(tmp_path):
     assert len(lines) >= 2, run.stderr()  # at least one on the interval, and the last
     assert lines[-1].startswith("progress: 72/72 trajectories (100.0%), ")
     assert "unresolved 0 (0.00%)" in lines[-1]
+
+
+# ---------------------------------------------------------------- Dask (issue 31, item 8)
+SMALL = 6  # 2 x 36 trajectories: 9 chunks of 8
+
+
+@pytest.fixture(scope="module")
+def small_reference(tmp_path_factory):
+    out = tmp_path_factory.mktemp("small") / "reference.h5"
+    return run_sweep(parse_scene(scene_text(out, SMALL), "reference.toml"), out, workers=1,
+                     chunk_size=CHUNK)
+
+
+def spawned_workers(run: Sweep, before: set[int] = frozenset()):
+    """Whether a Dask worker process (multiprocessing's spawn) other than ``before`` has
+    started: it is then importing, where a Ctrl-C printed a KeyboardInterrupt traceback."""
+    def ready():
+        try:
+            children = psutil.Process(run.proc.pid).children(recursive=True)
+            return any(p.pid not in before and "spawn_main" in " ".join(p.cmdline())
+                       for p in children)
+        except psutil.NoSuchProcess:
+            return False
+    return ready
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("phase", ["sweep", "verification"])
+def test_ctrl_c_while_a_dask_local_cluster_starts(tmp_path, small_reference, phase):
+    pytest.importorskip("dask.distributed")
+    # the verification of a sweep starts a cluster of its own (after the sweep's closed)
+    run = Sweep(tmp_path, "--scheduler", "local:1", *(("--check", "8") * (phase ==
+                                                                        "verification")),
+                *(("--no-verify",) * (phase == "sweep")), res=SMALL)
+    before = set()
+    if phase == "verification":
+        before = {p.pid for p in run.wait_for(lambda: "verification: rerunning" in
+                                              run.stderr(), "the verification")}
+    workers = run.wait_for(spawned_workers(run, before), "a worker process starting")
+    assert run.send(signal.SIGINT, group=True) == 130
+    line = check_one_line(run.stderr(), "SIGINT")  # on eab4deb: a traceback per worker
+    assert survivors(workers, timeout=20) == []
+    if phase == "sweep":
+        assert "chunks kept in" in line or line.endswith(f"nothing written to {run.out}")
+        if "resume with: " not in line:
+            return
+    else:
+        assert line.endswith("is complete but not verified; verify with: softimpact sweep "
+                             f"{run.scene} -o {run.out} --resume"), line
+    resumed = resume_as_printed(run.stderr().replace("verify with: ", "resume with: "))
+    assert resumed.returncode == 0, resumed.stderr
+    with xr.open_dataset(run.out) as back:
+        equal_results(small_reference, back.load())
+
+
+def test_a_dask_cluster_closed_mid_run(tmp_path, small_reference):
+    """A cluster closed (or left without workers) while the sweep runs: one line with the
+    resume command, exit 2, the chunks written kept; the resume ends in the same result
+    (on eab4deb: AttributeError: 'FutureCancelledError' object has no attribute 'items')."""
+    distributed = pytest.importorskip("dask.distributed")
+    cluster = distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                       protocol="tcp", dashboard_address=None)
+    try:
+        run = Sweep(tmp_path, "--scheduler", cluster.scheduler_address, "--no-verify",
+                    res=SMALL)
+        run.wait_for(run.chunks_written(2), "two chunks")
+    finally:
+        cluster.close()
+    assert run.proc.wait(timeout=120) == 2
+    stderr = run.stderr()
+    assert "Traceback" not in stderr and "AttributeError" not in stderr, stderr
+    last = stderr.strip().splitlines()[-1]
+    assert last.startswith(f"softimpact: error: the Dask cluster {cluster.scheduler_address} "
+                           "stopped running chunk "), stderr
+    assert f"of 9 chunks kept in {run.parts}; resume with: " in last, last
+    resumed = resume_as_printed(stderr)
+    assert resumed.returncode == 0, resumed.stderr
+    with xr.open_dataset(run.out) as back:
+        assert back.attrs["resumed"] == 1
+        equal_results(small_reference, back.load())

@@ -94,3 +94,73 @@ def test_info_lists_the_attractor_with_its_exponents(serial):
     line = next(x for x in format_summary(summary, serial).splitlines()
                 if x.strip().startswith("chaotic A1"))
     assert "6 trajectories" in line and f"{row['exponents'][0]:+.4f}" in line
+
+
+def test_a_trajectory_names_its_attractor_as_the_sweep_does(serial):
+    """The trajectory kind from the sweep's first start (2.5, 0), same settings: the same
+    second stage, the same attractor and the very same exponents (issue 31, item 2)."""
+    from softimpact_cli.analysis.engine import Problem
+    from softimpact_cli.analysis.trajectory import trajectory_dataset
+
+    text = SCENE.replace('kind = "basins"', 'kind = "trajectory"\nstate = [2.5, 0.0]')
+    text = text[: text.index("[initial_conditions]")] + '[output]\npath = "t.h5"\n'
+    sc = parse_scene(text, "ueda_trajectory.toml")
+    ds = trajectory_dataset(Problem(sc.system, sc.values, sc.integrator), [2.5, 0.0], 0.0,
+                            50, 8)
+    assert ds.attrs["outcome"] == "chaotic" and ds.attrs["label"] == "chaotic A1"
+    assert ds.attrs["periods_used"] == int(serial["periods_used"].values.ravel()[0])
+    for var in ("nonperiodic_exponents", "nonperiodic_stderr", "nonperiodic_cloud"):
+        assert np.array_equal(ds[var].values[0], serial[var].values[0]), var
+
+
+def test_the_messages_say_what_happened(tmp_path, monkeypatch):
+    """Issue 31, item 3, through the CLI: the catalogue line before the chunks, the
+    progress line, the closing note (no warning to raise max_periods) and info's status
+    line all agree with the labels `chaotic A1`."""
+    from click.testing import CliRunner
+
+    from softimpact_cli.cli import main
+
+    monkeypatch.setenv("SOFTIMPACT_PROGRESS_INTERVAL", "600")  # the last line only
+    out = tmp_path / "r.h5"
+    path = tmp_path / "ueda.toml"
+    path.write_text(SCENE.format(out=out))
+    run = CliRunner().invoke(main, ["sweep", str(path), "--workers", "1", "--no-verify"])
+    assert run.exit_code == 0, run.output
+    err = run.stderr
+    assert "no non-impacting solution found" not in err and "warning" not in err
+    assert "catalogue: no periodic non-impacting solution among " in err
+    assert "labels will be impacting periodic orbits, attractors that are not periodic " \
+           "(the second stage names them after the last chunk), unresolved or diverged" in err
+    assert "unresolved 0 (0.00%), on a recurrent set 6 (100.00%, named at the end)" in err
+    assert "softimpact: note: the catalogue search found no periodic solution among " in err
+    assert "the sweep's second stage found 1 attractor that is not periodic: chaotic A1 " \
+           "(6 trajectories)" in err
+    assert "found no solution among 0" not in err and "raise [integrator]" not in err
+    info = CliRunner().invoke(main, ["info", str(out)]).output
+    (status,) = [x for x in info.splitlines() if x.startswith("status ")]
+    assert status.split(None, 1)[1] == ("converged 0, unresolved 6 (first pass; then named "
+                                         "not periodic 6, left unresolved 0), diverged 0")
+    line = next(x for x in info.splitlines() if x.strip().startswith("chaotic A1"))
+    assert "d=" not in line  # one body: no stop, no d, phi, k_c, c_c to show
+
+
+def test_later_trajectories_stop_on_the_known_attractor(serial, tmp_path):
+    """Issue 31, item 3: once the block's first trajectory found chaotic A1 (full second
+    stage), the next ones are found on its cells within the probe and stop there; the
+    labels and the attractor are those of a run that follows every trajectory in full
+    (cells off, as the verification runs)."""
+    from dataclasses import replace
+
+    from softimpact_cli.analysis.section_follow import PROBE_PERIODS
+
+    used = serial["periods_used"].values.ravel()
+    assert used[0] > 40 + PROBE_PERIODS  # the first: max_periods, then the full stage
+    assert (used[1:] <= 40 + PROBE_PERIODS).all()  # the others: the probe only
+    sc = scene(tmp_path / "full.h5")
+    full = run_sweep(replace(sc, integrator=replace(sc.integrator, cell_size=0.0)),
+                     tmp_path / "full.h5", workers=1)
+    assert np.array_equal(full["label"].values, serial["label"].values)
+    assert (full["periods_used"].values.ravel()[1:] > 40 + PROBE_PERIODS).all()
+    for var in ("nonperiodic_code", "nonperiodic_members", "nonperiodic_exponents"):
+        assert np.array_equal(full[var].values, serial[var].values), var

@@ -62,7 +62,7 @@ def test_each_point_of_a_parameter_sweep_is_that_scene_alone(axis, values):
     grid = f"{axis} = [{values[0]}, {values[1]}]"
     ds = si.run(BODY.format(system="", grid=grid), workers=1)
     assert ds["label"].dims[0] == axis and ds.sizes[axis] == 2
-    assert ds.attrs["grid_parameters"] == axis
+    assert ds.attrs["grid_parameters"] == [axis]  # a list (analysis/attributes.py)
     for i, value in enumerate(values):
         alone = si.run(BODY.format(system=f"{axis} = {value}", grid=""), workers=1)
         point = ds.isel({axis: i})

@@ -174,3 +174,49 @@ def test_another_chunk_size_on_resume_is_refused(tmp_path, monkeypatch):
         resume(out, chunk_size=5)
     ds, _ = resume(out, chunk_size=CHUNK)  # the same size is fine
     assert ds.attrs["complete"] == 1 and np.all(ds["status"].values == 0)
+
+
+def _says_complete(out, **attrs):
+    """The header of an interrupted run rewritten to say complete = 1 (issue 31, item 7):
+    its chunk files are all that holds the result."""
+    from softimpact_cli.store import write_result
+
+    header = SweepStore(out).header()
+    header.attrs.update({"complete": 1, **attrs})
+    write_result(header, out)
+
+
+@pytest.mark.parametrize("verify_status", [None, "pending"])
+def test_a_header_that_says_complete_resumes_from_its_chunks(reference, tmp_path, monkeypatch,
+                                                             verify_status):
+    from softimpact_cli.sweep.verification import PENDING, sweep_verified
+
+    out = tmp_path / "r.h5"
+    store = interrupted(out, monkeypatch)
+    _says_complete(out, **({"verify_status": PENDING} if verify_status else {}))
+    said = []
+    if verify_status:  # as `softimpact sweep --resume` runs it: the verification after
+        ds = sweep_verified(scene_at(out), out, resume=True, echo=said.append, workers=1,
+                            sample=4)
+    else:
+        ds = run_sweep(scene_at(out), out, workers=1, resume=True, echo=said.append)
+    said = "\n".join(said)
+    assert (f"resume: the result header {out} says it is complete but holds no 'label' "
+            "variable; rewriting it and keeping the chunk files that verify") in said
+    assert "resuming: 8 of 8 chunks already done" in said
+    equal_results(reference, ds)
+    equal_results(reference, open_result(out))
+    assert not store.parts.exists()
+
+
+def test_a_header_that_says_complete_without_chunks_is_refused(tmp_path, monkeypatch):
+    out = tmp_path / "r.h5"
+    store = interrupted(out, monkeypatch)
+    _says_complete(out)
+    shutil.rmtree(store.parts)
+    before = out.read_bytes()
+    with pytest.raises(ConfigError, match=r"r\.h5: says it is complete but holds no 'label' "
+                                          r"variable, and no chunk files are kept; pass "
+                                          r"--overwrite to compute it again"):
+        resume(out)
+    assert out.read_bytes() == before

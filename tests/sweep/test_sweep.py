@@ -99,7 +99,7 @@ def test_layout_with_h5py(serial):
 
 def test_labels_are_the_catalogues_and_consistent_across_grid(serial):
     _, _, ds = serial
-    assert set(ds.attrs["catalogue_names"].split("; ")) == {
+    assert set(ds.attrs["catalogue_names"]) == {  # a list (analysis/attributes.py)
         "L1^1 R1-0^1", "L1^1 R1-0^2", "L1^2 R1-0^1", "L1^2 R1-0^2"}
     # the small-small solution exists at both phases (d = 6 is far above its d_crit)
     small = ds["label"].sel(phi=0.0)

@@ -6,6 +6,7 @@ import math  # noqa: F401
 
 import numpy as np
 
+from ...analysis.attributes import attribute_list
 from .. import measures as M
 from ..runs import MissingRun
 from ..verdicts import Measure
@@ -100,7 +101,7 @@ def fig06a_outside_own_basin(st, runs):
     points = M.plane_points(ds)
     panel = points.index(M.point_at(points, d=22.0, phi=0.0))
     label, axes, table = M.plane_labels(ds, panel)
-    ic_dims = str(ds.attrs.get("ic_dims", "")).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     names = M.combination_names(ds)
     orbits = ds["combination_orbit"].values
     variables = [str(v) for v in ds["variable"].values]
@@ -197,7 +198,7 @@ def duffing_smooth_boundary(st, runs):
 
 def _velocity_rows(ds, code_name: str) -> np.ndarray:
     label, _, table = M.plane_labels(ds, 0)
-    ic_dims = str(ds.attrs.get("ic_dims", "")).split()
+    ic_dims = attribute_list(ds.attrs, "ic_dims")
     codes = [c for c, n in table.items() if n.startswith(code_name)]
     hit = np.isin(label, codes)
     return hit.mean(axis=ic_dims.index("x"))  # share per velocity

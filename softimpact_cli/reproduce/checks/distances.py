@@ -6,7 +6,13 @@ import math  # noqa: F401
 
 import numpy as np
 
-from ...analysis.catalogue import Attractor, body_problem, combinations, right_attractors
+from ...analysis.catalogue import (
+    Attractor,
+    body_problem,
+    combinations,
+    right_attractors,
+    search_shares,
+)
 from ...analysis.critical_distance import relative_trace, uncoupled_pair
 from ...config import IntegratorSettings
 from .. import measures as M
@@ -27,7 +33,7 @@ def _attractors(ds) -> list:
         mult = ds["multiplier_re"].values[i] + 1j * ds["multiplier_im"].values[i]
         out.append(Attractor(int(number), p, ds["attractor_points"].values[i, :p].copy(),
                              float(ds["attractor_amplitude"].values[i]),
-                             mult[np.isfinite(mult)], float(ds["attractor_share"].values[i]),
+                             mult[np.isfinite(mult)], float(search_shares(ds)[i]),
                              float(ds["attractor_residual"].values[i])))
     return out
 
