@@ -20,7 +20,8 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from softimpact_cli.analysis.labels import name_of  # noqa: E402
-from softimpact_cli.config import IntegratorSettings, parse_scene  # noqa: E402
+from softimpact_cli.config import IntegratorSettings  # noqa: E402
+from softimpact_cli.kinds.scene import parse_scene  # noqa: E402
 from softimpact_cli.sweep import executors  # noqa: E402
 from softimpact_cli.sweep.chunks import SweepContext  # noqa: E402
 

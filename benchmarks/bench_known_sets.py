@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from softimpact_cli.analysis import section_follow
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep.in_memory import sweep_in_memory
 
 SCENE = """

@@ -57,8 +57,9 @@ from _common import (
 from _precision_report import write_report
 
 from softimpact_cli.analysis.engine import Problem, record_trajectory
-from softimpact_cli.config import IntegratorSettings, parse_scene
+from softimpact_cli.config import IntegratorSettings
 from softimpact_cli.kernels.numba_cache import source_hash
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import runner
 from softimpact_cli.sweep.chunks import SweepContext
 

@@ -9,8 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from softimpact_cli.analysis.catalogue import build_catalogue, sample_states
-from softimpact_cli.config import load_scene
+from softimpact_cli.analysis.catalogue import sample_states
+from softimpact_cli.kinds.scene import load_scene
+from softimpact_cli.store.catalogues import build_catalogue
 
 SCENES = ["fig04_duffing_catalogue.toml", "fig10_bilinear_catalogue.toml",
           "fig13_bilinear_catalogue.toml"]

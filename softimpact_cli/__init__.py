@@ -12,6 +12,7 @@ first use.
 __version__ = "0.1.0"
 
 import gc as _gc  # noqa: E402
+import importlib  # noqa: E402
 import os as _os  # noqa: E402
 import sys as _sys  # noqa: E402
 
@@ -24,23 +25,19 @@ COMMAND_GC_THRESHOLD = (50_000, 20, 20)
 if _sys.argv and _os.path.basename(_sys.argv[0]) == "softimpact":
     _gc.set_threshold(*COMMAND_GC_THRESHOLD)
 
-# The packages ``sweep`` and ``kinds`` first (``api`` imports ``kinds``): importing a
-# submodule binds it as an attribute of this package, which would replace the function
-# of the same name bound below if it came later. So ``softimpact_cli.sweep`` and
-# ``softimpact_cli.kinds`` are the functions; ``from softimpact_cli.sweep import
-# run_sweep`` and ``from softimpact_cli.kinds import KINDS`` work as before.
+# The API's functions are imported on first use (they import xarray, the store and the
+# analyses). ``softimpact_cli.sweep`` and ``softimpact_cli.kinds`` are the functions
+# ``api.sweep`` and ``api.kinds``: the subpackages of the same names, bound here by Python
+# when they are first imported, are unbound again so that the names go to
+# ``__getattr__``; ``from softimpact_cli.sweep import run_sweep`` and ``from
+# softimpact_cli.kinds import KINDS`` work as before (the subpackages stay in sys.modules).
+from . import kinds as _kinds_package  # noqa: E402, F401
 from . import sweep as _sweep_package  # noqa: E402, F401
-from .api import (  # noqa: E402
-    ConfigError,
-    kinds,
-    load_scene,
-    measure,
-    open_result,
-    run,
-    shrink_scene,
-    sweep,
-)
+from .config import ConfigError  # noqa: E402
 
+del sweep, kinds  # noqa: F821  (the subpackages' bindings; see above)
+
+_API = ("kinds", "load_scene", "measure", "open_result", "run", "shrink_scene", "sweep")
 __all__ = ["Classified", "ConfigError", "System", "kinds", "load_scene", "measure",
            "open_result", "plot", "run", "shrink_scene", "sweep"]
 
@@ -49,12 +46,14 @@ if "xarray" in _sys.modules:  # ds.si on datasets xarray opens itself (else on f
 
 
 def __getattr__(name: str):
-    # the figures import matplotlib, System xarray and the sweep machinery: only when a
-    # notebook first asks for them
-    import importlib
-
-    if name == "plot":
-        return importlib.import_module(".plot", __name__)
+    # the API on first use; the figures (matplotlib), System (xarray, the sweep machinery)
+    # only when a notebook first asks for them
+    if name in _API:
+        api = importlib.import_module(".api", __name__)
+        globals().update({n: getattr(api, n) for n in _API})
+        return globals()[name]
     if name in ("System", "Classified"):
         return getattr(importlib.import_module(".api_system", __name__), name)
+    if name == "plot":
+        return importlib.import_module(".plot", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

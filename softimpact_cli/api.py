@@ -33,19 +33,39 @@ the plan and catalogue lines the CLI shows.
 from __future__ import annotations
 
 import os
+import time
 import warnings
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
+import xarray as xr
+
+from . import (
+    __version__,
+    accessor,  # noqa: F401  (registers ds.si on the datasets handed out)
+)
 from .analysis.attributes import attribute_list
-from .config import ConfigError, Scene, check_writable, parse_scene, result_path
-from .config import load_scene as load_scene_file
+from .analysis.fractality import fractality, plane_problem
+from .config import ConfigError, Scene, check_writable, result_path
 from .config.space import check_disk, check_memory
-from .kinds import KINDS
-
-if TYPE_CHECKING:  # importing the package must not import xarray
-    import xarray as xr
+from .config.toml_text import toml_text
+from .kinds import KINDS, sweep_kinds
+from .kinds import get as kind_of
+from .kinds.run import run_scene
+from .kinds.scene import load_scene as load_scene_file
+from .kinds.scene import parse_scene
+from .kinds.scene import quick as quick_scene
+from .store import open_result as read_store
+from .store import write_result
+from .store.layout import file_order, memory_order
+from .store.lock import output_lock
+from .store.provenance import command_line, history_line, iso_time
+from .store.xarray_dask import install
+from .sweep import sweep_in_memory
+from .sweep.executors import make_executor
+from .sweep.pilot import choose_tolerance
+from .sweep.verification import disabled_status, sweep_verified, verify_sweep
 
 __all__ = ["ConfigError", "kinds", "load_scene", "measure", "open_result", "run",
            "shrink_scene", "sweep"]
@@ -74,8 +94,6 @@ def load_scene(scene: SceneLike, source: str | None = None) -> Scene:
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, Mapping):
-        from .config.toml_text import toml_text
-
         name = source or "<dict>"
         return parse_scene(toml_text(scene, name), name)
     if isinstance(scene, str) and ("\n" in scene or "=" in scene or not scene.strip()):
@@ -90,8 +108,6 @@ def shrink_scene(scene: Scene, quick: bool = False, resolution: int | None = Non
     """The scene at the CLI's ``--quick`` (planes <= 24 x 24, <= 100 samples, <= 6 values
     per swept grid axis, fewer dcrit phases and d steps) and/or ``--resolution N`` (a
     plane's resolution per axis capped at N, grids kept); the stored scene text says so."""
-    from .config import quick as quick_scene
-
     if quick:
         scene = quick_scene(scene)
     if resolution:
@@ -147,9 +163,6 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     ``verify_sample``: the number rerun (default from [verification]). ``verify=False``
     records "not verified (disabled by --no-verify)".
     """
-    from .kinds import get as kind_of
-    from .store.xarray_dask import install
-
     install()  # no dask imported for datasets that hold none (store/xarray_dask.py)
     _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
@@ -158,7 +171,6 @@ def run(scene: SceneLike, *, quick: bool = False, resolution: int | None = None,
     if kind.sweep:
         return _handed_out(_sweep_in_memory(sc, workers, scheduler, chunk_size,
                                             echo or _silent, bar, verify, verify_sample))
-    from .kinds.run import run_scene
 
     return _handed_out(run_scene(sc, progress=bar, workers=workers, scheduler=scheduler,
                                  echo=echo or _silent))
@@ -169,10 +181,6 @@ def _handed_out(ds: xr.Dataset) -> xr.Dataset:
     variables end in (second axis, first axis), as ``xarray.open_dataset`` reads them, so
     that ``ds.label.plot()`` puts the first axis horizontally; ``store.layout``), with
     the ``ds.si`` accessor registered (``accessor.py``)."""
-    # here, not at the top: importing the package must not import xarray
-    from . import accessor  # noqa: F401 (registers ds.si)
-    from .store.layout import file_order
-
     return file_order(ds)
 
 
@@ -192,11 +200,6 @@ def _check_verify_sample(verify_sample) -> None:
 def _sweep_in_memory(sc: Scene, workers, scheduler, chunk_size, echo, bar, verify: bool,
                      verify_sample: int | None) -> xr.Dataset:
     """A sweep kind run in memory, then verified (or recorded as not verified)."""
-    from .sweep import sweep_in_memory
-    from .sweep.executors import make_executor
-    from .sweep.pilot import choose_tolerance
-    from .sweep.verification import disabled_status, verify_sweep
-
     if not (verify and (sc.verification is None or sc.verification.enabled)):
         ds = sweep_in_memory(sc, workers, scheduler, chunk_size, echo, bar)
         ds.attrs["verify_status"] = disabled_status(
@@ -228,10 +231,6 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     :func:`run`); a redo at tighter settings is written beside ``out`` and replaces it
     when done, and ``resume=True`` also finishes an interrupted verification.
     """
-    from .kinds import SWEEP_KINDS
-    from .kinds import get as kind_of
-    from .store.xarray_dask import install
-
     install()  # no dask imported for datasets that hold none (store/xarray_dask.py)
     _check_verify_sample(verify_sample)
     sc = shrink_scene(load_scene(scene), quick, resolution)
@@ -242,19 +241,13 @@ def sweep(scene: SceneLike, out: str | os.PathLike | None = None, *, resume: boo
     bar = _progress(progress, kind.progress_unit)
     echo = echo or _silent
     if kind.sweep:
-        from .sweep.verification import sweep_verified
-
         return _handed_out(sweep_verified(
             sc, target, verify=verify, sample=verify_sample, resume=resume, echo=echo,
             workers=workers, scheduler=scheduler, overwrite=overwrite, chunk_size=chunk_size,
             progress=bar))
     if resume:
         raise ConfigError(f"{sc.source}: resume is for sweeps (kinds "
-                          f"{', '.join(SWEEP_KINDS)}); a {kind.name} reruns whole")
-    from .kinds.run import run_scene
-    from .store import write_result
-    from .store.lock import output_lock
-    from .store.provenance import command_line
+                          f"{', '.join(sweep_kinds())}); a {kind.name} reruns whole")
 
     # held for the whole run: a second run on the same output is refused at once, not
     # after it has computed everything
@@ -280,8 +273,6 @@ def open_result(path: str | os.PathLike) -> xr.Dataset:
 def read_result(path: str | os.PathLike) -> xr.Dataset:
     """:func:`open_result` in the package's in-memory dim order (``store.layout``): what
     the command line's ``plot``, ``info`` and ``compare`` read."""
-    from .store import open_result as read
-
     p = Path(path)
     if p.is_dir():
         raise ConfigError(f"{path}: is a directory, not a result file")
@@ -290,7 +281,7 @@ def read_result(path: str | os.PathLike) -> xr.Dataset:
     try:
         with warnings.catch_warnings():  # a foreign HDF5 file: the reader's warnings are noise
             warnings.simplefilter("ignore")
-            ds = read(p)
+            ds = read_store(p)
     except Exception as exc:  # any reader failure is the file's fault, said in one line
         raise ConfigError(f"{path}: not a softimpact result file ({exc.__class__.__name__})"
                           ) from None
@@ -345,11 +336,6 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
     file) for anything else than a complete basins result over a plane, or sizes that do
     not fit it; nothing is written then.
     """
-    import xarray as xr
-
-    from .analysis.fractality import fractality, plane_problem
-    from .store.layout import memory_order
-
     name = "result" if isinstance(result, xr.Dataset) else os.fspath(result)
     ds = memory_order(result) if isinstance(result, xr.Dataset) else read_result(result)
     problem = plane_problem(ds)
@@ -363,10 +349,6 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
         measured = fractality(ds, box_sizes, radii, wada_radius, wada_tol)
     except ValueError as exc:
         raise ConfigError(f"{name}: {exc}") from None
-    import time
-
-    from . import __version__
-    from .store.provenance import history_line, iso_time
 
     measured.attrs.update({"source_result": name, "softimpact_version": __version__,
                            "measured": iso_time(time.time()),
@@ -374,7 +356,5 @@ def measure(result: str | os.PathLike | xr.Dataset, out: str | os.PathLike | Non
     if "scene_text" not in measured.attrs:  # a dataset built by hand
         measured.attrs["scene_text"] = ""
     if out is not None:
-        from .store import write_result
-
         write_result(measured, out)
     return measured

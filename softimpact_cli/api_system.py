@@ -43,15 +43,17 @@ from .analysis.engine import Problem
 from .analysis.labels import name_of
 from .analysis.trajectory import trajectory_dataset
 from .api import SceneLike, _handed_out, load_scene
-from .config import ConfigError, Scene, parse_scene
+from .config import ConfigError, Scene
 from .config.axes import COUPLING_AXES
 from .config.limits import MAX_TRAJECTORY_SAMPLES
 from .config.sweep import GRID_AXES, CatalogueSettings, Grid, InitialConditions, read_catalogue
 from .config.toml_text import toml_text
 from .kernels.codes import outcome
 from .kinds.catalogue import CatalogueAnalysis
+from .kinds.scene import parse_scene
 from .kinds.sweeps import SweepAnalysis
 from .sweep.chunks import run_chunk
+from .sweep.runner import prepare_inputs
 from .sweep.second_stage import relabel, unpack
 
 
@@ -203,8 +205,6 @@ class System:
     def _labelling(self):
         """The sweep's inputs at this point (catalogue, names, workers' context)."""
         if self._inputs is None:
-            from .sweep.runner import prepare_inputs
-
             self._inputs = prepare_inputs(self._point)
         return self._inputs
 

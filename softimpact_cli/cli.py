@@ -14,8 +14,16 @@ from pathlib import Path
 
 import click
 
-from .config import ConfigError, check_writable, load_scene, result_path
+from .config import ConfigError, check_writable, result_path
+from .kinds import KINDS, example_scene, help_lines, sweep_kinds
+from .kinds import get as kind_of
+from .kinds.check import check_scene, over_limit
+from .kinds.design_settings import with_target
+from .kinds.scene import load_scene
+from .report.progress import ProgressLines
 from .report.streams import reader_safe_streams
+from .sweep import interrupt
+from .sweep.interrupt import modified, sweep_kept
 
 
 def _user_errors(func):
@@ -37,7 +45,8 @@ def _user_errors(func):
 
 
 def _open(path: str):
-    from .api import read_result
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import read_result
 
     return read_result(path)
 
@@ -53,8 +62,6 @@ def _progress_bar(total: int, initial: int = 0, unit: str = "trajectories"):
     $SOFTIMPACT_PROGRESS_INTERVAL s (default 30, see report/progress.py); returns the callable
     fed with counts or with a chunk's label codes."""
     if not sys.stderr.isatty():
-        from .report.progress import ProgressLines
-
         lines = ProgressLines(total, initial, unit)
         _STARTED_LINES.append(lines)
         return lines
@@ -71,8 +78,6 @@ def _interruptible(func):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        from .sweep import interrupt
-
         with interrupt.raising_on_signals():
             try:
                 return func(*args, **kwargs)
@@ -92,7 +97,8 @@ def _interruptible(func):
 def _warn_outcomes(ds, scene, strict: bool) -> None:
     """Warn about a result mostly unresolved or diverged, or an empty catalogue; with
     --strict, exit with report.outcomes.STRICT_STATUS (3) afterwards (the result is written)."""
-    from .report.outcomes import STRICT_STATUS, outcome_notes, outcome_warnings
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import STRICT_STATUS, outcome_notes, outcome_warnings
 
     for note in outcome_notes(ds):
         click.echo(f"softimpact: note: {note}", err=True)
@@ -108,8 +114,8 @@ def _warn_outcomes(ds, scene, strict: bool) -> None:
 def _check_rk4_step(scene, strict: bool) -> None:
     """Warn (or, with --strict, refuse) when the scene's fixed RK4 step is unstable at any
     of its grid points."""
-    from .analysis.engine import Problem
-    from .analysis.step_stability import rk4_step_warning
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import Problem, rk4_step_warning
 
     points = [dict(scene.values)]
     if scene.grid is not None and scene.system.bodies == 2:
@@ -163,7 +169,21 @@ def _scheduler(ctx, param, value):
     return value
 
 
-@main.command()
+class _KindsHelp(click.Command):
+    """A command whose help lists the kinds of the registry where it says ``{kinds}``
+    (read when the help is shown: the kinds' modules are imported then)."""
+
+    def format_help_text(self, ctx, formatter) -> None:
+        help_text = self.help
+        # the docstring's indentation (click dedents the whole text)
+        self.help = help_text.replace("{kinds}", "\n    ".join(help_lines("  ")))
+        try:
+            super().format_help_text(ctx, formatter)
+        finally:
+            self.help = help_text
+
+
+@main.command(cls=_KindsHelp)
 @click.argument("scene")
 @click.option("-o", "--output", help="Result file (overrides [output] path).")
 @click.option("--overwrite", is_flag=True, help="Replace an existing result file.")
@@ -204,14 +224,7 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     SCENE's [analysis] kind says what is computed:
 
     \b
-      trajectory   one trajectory, recorded and classified
-      catalogue    the attractors of one body and the pair's combinations
-      basins       the label of every start on a plane, at every [grid] point
-      stability    basin stability: shares of random starts, 95% Wilson intervals
-      dcrit        critical distance d_crit(phi) of every combination
-      bifurcation  each solution followed along d (or w, F, ...), destruction located
-      map          coexisting solutions over two parameters, predicted and found
-      design       (d, phi, k_c, c_c) where only the target survives (see design)
+    {kinds}
 
     Example scenes: configs/ (demo, trajectory, catalogues, designs) and
     configs/figures/ (every figure of the study); `softimpact example KIND` prints a
@@ -227,15 +240,20 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
       softimpact sweep configs/demo_basins.toml -o results/demo.h5
       softimpact sweep configs/fig04_duffing_catalogue.toml --quick
     """
-    from .api import shrink_scene
-    from .kinds import SWEEP_KINDS
-    from .kinds import get as kind_of
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import (
+        STRICT_STATUS,
+        announce_compilation,
+        plan_text,
+        run_to_file,
+        shrink_scene,
+        switched_off,
+    )
 
     if check_n and no_verify:
         raise ConfigError(f"--check {check_n} and --no-verify: choose one (--check N sets "
                           "how many trajectories the verification reruns)")
     if no_cache:  # the switch of SOFTIMPACT_NO_CACHE=1, for this command only
-        from .store.catalogue_cache import switched_off
 
         click.get_current_context().with_resource(switched_off())
     sc = shrink_scene(load_scene(scene), quick, resolution)
@@ -245,18 +263,12 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
     if dry_run:
         from dataclasses import replace
 
-        from .kinds.run import plan_text
-
         click.echo(plan_text(replace(sc, output=out), workers, chunk_size))
         return
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     _check_rk4_step(sc, strict)
-    from .analysis.warmup import announce_compilation
     announce_compilation(sc)
     if kind_of(sc.analysis.kind).sweep:
-        from .api import sweep as run_to_file
-        from .sweep.interrupt import modified, sweep_kept
-
         flags = ("--quick",) * quick + (("--resolution", str(resolution)) if resolution else ())
         click.get_current_context().meta["softimpact.kept"] = functools.partial(
             sweep_kept, out, scene, flags, modified(out))
@@ -270,12 +282,10 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
         over = _report_verification(ds)
         _warn_outcomes(ds, sc, strict)
         if over and strict:
-            from .report.outcomes import STRICT_STATUS
-
             sys.exit(STRICT_STATUS)
         return
     if resume:
-        raise ConfigError(f"{scene}: --resume is for sweeps (kinds {', '.join(SWEEP_KINDS)}); "
+        raise ConfigError(f"{scene}: --resume is for sweeps (kinds {', '.join(sweep_kinds())}); "
                           f"a {sc.analysis.kind} reruns whole")
     _warn_outcomes(_run_whole(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
 
@@ -283,8 +293,8 @@ def sweep(scene, output, overwrite, resume, workers, scheduler, chunk_size, quie
 def _run_whole(sc, out: Path, overwrite: bool, workers, scheduler, quiet: bool):
     """Run a scene that is not a sweep (every kind but basins, stability, map), write its
     result, print what its kind reports and the outcome line; return the dataset."""
-    from .api import sweep as run_to_file
-    from .kinds import get as kind_of
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import run_to_file
 
     kind = kind_of(sc.analysis.kind)
     ds = run_to_file(sc, out, overwrite=overwrite, workers=workers, scheduler=scheduler,
@@ -330,8 +340,8 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
     Example:
       softimpact design configs/design_duffing.toml --quick -o results/design_quick.h5
     """
-    from .api import shrink_scene
-    from .config.design import with_target
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import announce_compilation, plan_text, shrink_scene
 
     sc = load_scene(scene)
     if sc.analysis.kind != "design":
@@ -345,11 +355,8 @@ def design(scene, target, output, overwrite, workers, scheduler, quiet, quick, d
     if dry_run:
         from dataclasses import replace
 
-        from .kinds.run import plan_text
-
         click.echo(plan_text(replace(sc, output=out)))
         return
-    from .analysis.warmup import announce_compilation
     announce_compilation(sc)
     _warn_outcomes(_run_whole(sc, out, overwrite, workers, scheduler, quiet), sc, strict)
 
@@ -358,8 +365,8 @@ def _report_verification(ds) -> bool:
     """Print the label-error line; a note when some rerun label disagreed although the
     error is within the threshold, a warning when it is over. A clean run (none disagreed,
     whatever the bound) gets no note. Returns whether it is over the threshold."""
-    from .report.verification import verification_line
-    from .sweep.verification import OVER, VERIFIED
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import OVER, VERIFIED, verification_line
 
     click.echo(verification_line(ds.attrs))
     status = ds.attrs["verify_status"]
@@ -399,10 +406,10 @@ def _format_check(report: dict) -> str:
 @_user_errors
 def check(scene, sample, seed, as_json, fail_over):
     """Rerun part of SCENE at tightened settings: label changes and wall-time ratio."""
-    from .kinds.check import check_scene, over_limit
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import announce_compilation
 
     sc = load_scene(scene)
-    from .analysis.warmup import announce_compilation
     announce_compilation(sc)
     try:
         report = check_scene(sc, sample, seed)
@@ -429,7 +436,8 @@ def check(scene, sample, seed, as_json, fail_over):
 @_user_errors
 def compare(result_a, result_b, max_label_change, max_share_change, max_d_change, as_json):
     """Differences of RESULT_B from RESULT_A (same scene layout): labels, shares, d."""
-    from .report.compare import compare_results, format_comparison, limits_exceeded
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import compare_results, format_comparison, limits_exceeded
 
     report = compare_results(_open(result_a), _open(result_b), result_a, result_b)
     why = limits_exceeded(report, max_label_change, max_share_change, max_d_change)
@@ -479,8 +487,8 @@ def measure(result, output, overwrite, box_sizes, radii, wada_radius, wada_tol):
       softimpact sweep configs/figures/fig09_bilinear_single_basins.toml -o fig09.h5
       softimpact measure fig09.h5 -o fig09_fractality.h5
     """
-    from .api import measure as measure_result
-    from .report.fractality import fractality_lines
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import fractality_lines, measure_result
 
     check_writable(output, "command line", "-o/--output")
     ds = measure_result(result, output, box_sizes=box_sizes, radii=radii,
@@ -498,15 +506,13 @@ def example(kind):
     Example:
       softimpact example basins > my_basins.toml && softimpact sweep my_basins.toml
     """
-    from .config.examples import EXAMPLES
-    from .config.examples import example as example_scene
 
     if kind is None:
-        click.echo("kinds: " + ", ".join(EXAMPLES) + " (softimpact example KIND)")
+        click.echo("kinds: " + ", ".join(KINDS) + " (softimpact example KIND)")
         return
-    if kind not in EXAMPLES:
+    if kind not in KINDS:
         click.echo(f"softimpact: error: example: unknown kind {kind!r}; kinds: "
-                   f"{', '.join(EXAMPLES)}", err=True)
+                   f"{', '.join(KINDS)}", err=True)
         sys.exit(2)
     click.echo(example_scene(kind), nl=False)
 
@@ -521,13 +527,15 @@ def _draw(result: str, output: str, dpi: int, kind: str, draw, complete: bool = 
     """Open RESULT, check that it holds a ``kind`` analysis (or passes ``accept``, a
     predicate on its attributes, described by ``expected``), draw it with ``draw(ds)``
     (a ``plot`` function, returning the Figure) and save it to OUTPUT."""
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import save
+
     ds = _open(result)
     ok = accept(ds.attrs) if accept else ds.attrs.get("analysis") == kind
     if not ok or (complete and int(ds.attrs.get("complete", 0)) != 1):
         what = expected or (f"a complete {kind} result" if complete else f"a {kind} result")
         raise ConfigError(f"{result}: holds a {ds.attrs.get('analysis')!r} result, not {what}")
     check_writable(output, "command line", "-o/--output")
-    from .plot import save
 
     try:
         path = save(draw(ds), output, dpi)
@@ -569,13 +577,9 @@ class _KindPlots(click.Group):
     registry when the command line is parsed."""
 
     def list_commands(self, ctx):
-        from .kinds import KINDS
-
         return sorted(name for name, kind in KINDS.items() if kind.plot is not None)
 
     def get_command(self, ctx, name):
-        from .kinds import KINDS
-
         kind = KINDS.get(name)
         return _plot_command(kind) if kind is not None and kind.plot is not None else None
 
@@ -594,8 +598,14 @@ def plot():
 @_user_errors
 def info(result, as_json, compare):
     """What RESULT holds: scene, status, period, contacts, wall time."""
-    from .report.info import compare_shares, describe, incomplete_summary
-    from .store.sweep_store import SweepStore
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import (
+        SweepStore,
+        compare_shares,
+        describe,
+        format_summary,
+        incomplete_summary,
+    )
 
     ds = _open(result)
     if compare:
@@ -626,7 +636,6 @@ def info(result, as_json, compare):
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
-    from .report.info_text import format_summary
 
     click.echo(format_summary(summary, ds))
 
@@ -646,7 +655,8 @@ def cache():
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 def cache_info(as_json):
     """Where the catalogue cache is, its entries and size."""
-    from .store.catalogue_cache import info as cache_state
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import cache_state
 
     state = cache_state()
     if as_json:
@@ -659,7 +669,8 @@ def cache_info(as_json):
 @cache.command("clear")
 def cache_clear():
     """Remove every entry of the catalogue cache."""
-    from .store.catalogue_cache import cache_folder, clear
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import cache_folder, clear
 
     removed = clear()
     click.echo(f"removed {removed} catalogue cache entr{'y' if removed == 1 else 'ies'} "
@@ -692,9 +703,8 @@ def reproduce(quick, only, output, workers, cached_only, cache, quiet):
     Runs are cached in results/reproduce/ under a hash of their scene text: a finished
     run is reused and an interrupted sweep resumes.
     """
-    from .reproduce.report import reproduce as run_reproduce
-    from .reproduce.runs import CACHE
-    from .reproduce.table import summary
+    # the analyses, xarray and the store: imported when the command runs
+    from .commands import CACHE, run_reproduce, summary
 
     echo = (lambda s: None) if quiet else (lambda s: click.echo(s, err=True))
     try:

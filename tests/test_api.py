@@ -13,7 +13,7 @@ from click.testing import CliRunner
 
 import softimpact_cli as si
 from softimpact_cli.cli import main
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 
 ROOT = Path(__file__).parents[1]
 CONFIGS = ROOT / "configs"

@@ -144,7 +144,7 @@ def test_info_on_missing_or_foreign_file(tmp_path):
 def test_library_run_imports_neither_click_nor_matplotlib(tmp_path):
     code = (
         "import sys\n"
-        "from softimpact_cli.config import parse_scene\n"
+        "from softimpact_cli.kinds.scene import parse_scene\n"
         "from softimpact_cli.kinds.run import run_scene\n"
         "scene = parse_scene(\"[system]\\nmodel='duffing'\\nbodies=1\\n[analysis]\\n"
         "state=[1.0, 0.0]\\nperiods=2\\n\")\n"
@@ -182,7 +182,7 @@ def test_stiff_stop_rk4_warns_and_diverges_auto_converges(tmp_path):
     """k_c = 1e6 (Duffing pair, phi = pi, d = 1): RK4 at T/1440 is warned about, then
     reports diverged; --strict refuses to start; the default method converges, and info
     says how many steps each of its methods took."""
-    from softimpact_cli.report.info import describe  # what `softimpact info` prints
+    from softimpact_cli.kinds.results import describe  # what `softimpact info` prints
 
     scene = tmp_path / "rk4.toml"
     scene.write_text(STIFF_SCENE.format(c_c=1e3, method="rk4"))

@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.config import load_scene, quick
+from softimpact_cli.kinds.scene import load_scene, quick
 
 ROOT = Path(__file__).parents[1]
 README = (ROOT / "README.md").read_text()
@@ -244,3 +244,11 @@ def test_the_python_api_page_runs_as_written(tmp_path):
     assert (tmp_path / "results" / "basins.h5").is_file()
     lines = run.stdout.strip().splitlines()
     assert lines[-1] == "True" and "(1, 1, 1, 1, 1, 16, 16)" in lines[0]
+
+
+def test_the_readme_lists_every_kind_of_the_registry():
+    from softimpact_cli.kinds import KINDS, REGISTRY
+
+    listed = re.findall(r"^  - `(\w+)`: (.*)$", README, re.M)
+    assert [name for name, _ in listed] == list(REGISTRY)
+    assert all(line == KINDS[name].description for name, line in listed)

@@ -24,6 +24,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..config import ConfigError, IntegratorSettings
+from ..kernels import numba_cache
 from ..kernels.codes import CONVERGED, OK, outcome
 from ..systems import System, get_system
 from ..systems.base import check_bodies
@@ -134,29 +135,10 @@ def require_attractors(catalogue: Catalogue, kind: str, source: str) -> None:
                       f"unresolved); {kind} needs at least one")
 
 
-def scene_catalogue(scene) -> Catalogue:
-    """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...);
-    one line (ConfigError) and nothing further computed when it finds no attractor."""
-    search = scene_body_attractors(scene)
-    cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, *search)
-    require_attractors(cat, scene.analysis.kind, str(scene.source))
-    return cat
-
-
 def catalogue_states(scene) -> np.ndarray:
     """The initial conditions of a scene's [catalogue] search, (n, 2)."""
     c = scene.catalogue
     return sample_states(c.box, c.grid, c.random, c.seed)
-
-
-def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:
-    """The one-body search every scene's catalogue starts from, over its [catalogue]
-    section's initial conditions (``states``, when the caller drew them already) at
-    t0 = 0, through the catalogue cache."""
-    c = scene.catalogue
-    states = catalogue_states(scene) if states is None else states
-    problem = body_problem(scene.system, scene.values, scene.integrator)
-    return cached_body_search(problem, states, 0.0, c.match_tol, progress)
 
 
 def body_problem(system: System, values: dict, integrator: IntegratorSettings) -> Problem:
@@ -344,16 +326,6 @@ def label_orbit(catalogue: Catalogue, orbit: np.ndarray, impacting: bool,
                  b.number)
 
 
-def build_catalogue(system: System, values: dict, integrator: IntegratorSettings,
-                    states: np.ndarray, t0: float = 0.0, match_tol: float = 1e-3,
-                    progress=None) -> Catalogue:
-    """The full catalogue: left attractors, and for a pair the right ones and combinations."""
-    check_bodies(system.bodies, "build_catalogue (left and right attractors)")
-    problem = body_problem(system, values, integrator)
-    search = cached_body_search(problem, states, t0, match_tol, progress)
-    return extend_catalogue(system, values, integrator, *search)
-
-
 def extend_catalogue(system: System, values: dict, integrator: IntegratorSettings,
                      left: list, counts: dict, n_states: int, source: str = "computed"
                      ) -> Catalogue:
@@ -387,32 +359,12 @@ class BodySearch(NamedTuple):
     source: str
 
 
-def cached_body_search(problem: Problem, states: np.ndarray, t0: float = 0.0,
-                       match_tol: float = 1e-3, progress=None) -> BodySearch:
-    """:func:`body_catalogue` through the catalogue cache (``store.catalogue_cache``):
-    read back bit for bit when an entry of :func:`search_key_material` verifies, else
-    searched and stored. ``progress`` gets every sample at once on a hit."""
-    from ..store import catalogue_cache
-
-    def search() -> dict[str, np.ndarray]:
-        left, counts = body_catalogue(problem, states, t0, match_tol, progress)
-        return search_arrays(BodySearch(left, counts, len(states), "computed"))
-
-    material = search_key_material(problem, states, t0, match_tol)
-    arrays, source = catalogue_cache.cached(material, search)
-    if progress is not None and source.startswith("cache"):
-        progress(len(states))
-    return search_from_arrays(arrays, source)
-
-
 def search_key_material(problem: Problem, states: np.ndarray, t0: float, match_tol: float
                         ) -> dict:
     """Everything a one-body search depends on, JSON-able: the body's model and parameters
     (not d, phi, k_c, c_c: a body has none), the integrator settings, the initial states
     (n, 2), t0, match_tol, and the sources and library versions that compute it."""
     import numba
-
-    from ..kernels.numba_cache import source_hash
 
     states = np.ascontiguousarray(states, dtype=np.float64)
     return {
@@ -424,7 +376,7 @@ def search_key_material(problem: Problem, states: np.ndarray, t0: float, match_t
         "states": {"shape": list(states.shape),
                    "sha256": hashlib.sha256(states.tobytes()).hexdigest()},
         "t0": float(t0), "match_tol": float(match_tol),
-        "sources": source_hash(folders=SEARCH_SOURCES),
+        "sources": numba_cache.source_hash(folders=SEARCH_SOURCES),
         "numpy": np.__version__, "numba": numba.__version__,
     }
 

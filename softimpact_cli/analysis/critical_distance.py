@@ -17,7 +17,7 @@ import xarray as xr
 
 from ..config import IntegratorSettings
 from ..systems import System
-from .catalogue import Catalogue, combinations, right_attractors
+from .catalogue import Catalogue, body_problem, combinations, right_attractors
 from .engine import Problem, flow, record_trajectory
 
 TIGHT = IntegratorSettings(method="dopri5", rtol=1e-12, atol=1e-13)
@@ -102,7 +102,6 @@ def critical_distances(system: System, values: dict, left: list, phis: np.ndarra
     times: dict[str, list] = {}
     for phi in phis:
         problem = uncoupled_pair(system, values, float(phi), integrator)
-        from .catalogue import body_problem
 
         right = right_attractors(body_problem(system, values, integrator), left, float(phi),
                                  body["right_sign"], body["right_phase"])
@@ -139,8 +138,6 @@ def traces(system: System, values: dict, catalogue: Catalogue, phis, samples: in
     max_q = 1
     data = []
     for phi in phis:
-        from .catalogue import body_problem
-
         problem = uncoupled_pair(system, values, float(phi))
         right = right_attractors(body_problem(system, values, TIGHT), left, float(phi),
                                  body["right_sign"], body["right_phase"])

@@ -40,7 +40,7 @@ class Problem:
 
     def __post_init__(self):
         params = self.system.pack(self.values)
-        if self.integrator.resolved_method == "exact":
+        if self.integrator.traits.closed_form:
             if self.system.variational:  # its fundamental matrix: an explicit method
                 object.__setattr__(self, "integrator", replace(self.integrator, method="dopri5"))
             else:  # the modes' flows travel behind the parameters (kernels/exact.py)

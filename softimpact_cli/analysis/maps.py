@@ -18,16 +18,14 @@ from .labels import parse_label
 
 
 def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list,
-                   body_lefts: dict | None = None) -> xr.Dataset:
-    """Add predicted_count, found_count, found_nonimpacting to a sweep result.
+                   dims: tuple[str, ...], body_lefts: dict | None = None) -> xr.Dataset:
+    """Add predicted_count, found_count, found_nonimpacting to a sweep result whose grid
+    points span ``dims`` (``sweep.result.grid_dims``).
 
     ``body_lefts``: when the grid sweeps body parameters (``config.axes``), the left
     attractors at each of their values, {((axis, value), ...): attractors}; the
     prediction at a point then uses the d_crit of its own attractors (``d_crit`` stored
     is the first's)."""
-    from ..report.info import grid_dims
-
-    dims = grid_dims(ds)
     names = [str(n) for n in ds["label_name"].values]
     codes = [int(c) for c in ds["label_code"].values]
     kinds = [parse_label(n).kind for n in names]

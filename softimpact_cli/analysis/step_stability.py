@@ -56,7 +56,7 @@ def largest_stable_step(eigenvalues: np.ndarray) -> float:
 def rk4_step_warning(problem: Problem) -> str | None:
     """A one-line warning when the scene's fixed RK4 step is unstable, else None."""
     s = problem.integrator
-    if s.resolved_method != "rk4":
+    if not s.traits.fixed_step:  # (RK4's stability polynomial: the one fixed-step method)
         return None
     h = problem.period / s.steps_per_period
     h_max = largest_stable_step(mode_eigenvalues(problem))

@@ -29,6 +29,8 @@ import math
 import numpy as np
 import xarray as xr
 
+from .basin_entropy import encode
+
 Z975 = 1.959963984540054
 EXACT_T975 = (12.706204736174707, 4.302652729749464, 3.182446305284263, 2.7764451051977987,
               2.570581835636314)
@@ -100,8 +102,6 @@ def fit_slope(x: np.ndarray, y: np.ndarray) -> dict:
 def uncertainty_exponent(labels: np.ndarray, radii=None) -> xr.Dataset:
     """f(r) over ``radii`` (cells; default :func:`default_radii`), alpha with its fit
     interval, D = 2 - alpha, and the radii the fit used (dims ``radius``)."""
-    from .basin_entropy import encode
-
     codes, _ = encode(labels)
     radii = tuple(radii) if radii is not None else default_radii(codes.shape)
     if not radii or any(isinstance(r, bool) or int(r) != r or r < 1 for r in radii) \

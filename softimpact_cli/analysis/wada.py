@@ -32,6 +32,8 @@ import math
 import numpy as np
 import xarray as xr
 
+from .basin_entropy import encode
+
 WADA, NOT_WADA, NOT_APPLICABLE = "Wada", "not Wada", "n/a"
 
 
@@ -71,8 +73,6 @@ def wada_merge(labels: np.ndarray, max_radius: int = 5, tol: float = 0.05) -> xr
     max_radius (dims ``wada_radius``), the ``verdict``, the radius it was reached at,
     and ``wada_map`` (per cell: 0 inside a basin, else how many merged boundaries lie
     within max_radius of that boundary cell)."""
-    from .basin_entropy import encode
-
     codes, values = encode(labels)
     if isinstance(max_radius, bool) or int(max_radius) != max_radius or max_radius < 1:
         raise ValueError(f"max_radius: a whole number of cells >= 1, got {max_radius!r}")

@@ -16,10 +16,24 @@ first time compiles (about a minute) without notice; after :func:`compile_all` n
 
 from __future__ import annotations
 
+import multiprocessing
+import os
 import sys
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
+
+from ..config import IntegratorSettings
+from ..kernels import METHODS, method_traits, orbit
+from ..kernels.numba_cache import SAVES_LOCKED
+from ..systems import REGISTRY, get_system, variational
+from .catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
+from .engine import Problem, RecurrenceCells, classify_state, flow, record_trajectory
+from .lyapunov import lyapunov_spectrum
+from .step_stability import rk4_step_warning
 
 COLD_MINUTES = 3  # measured: the demo's first sweep on a busy 2-core machine (issue 20)
 NOTICE = ("softimpact: compiling numerical kernels (first run only, about {minutes} min on "
@@ -39,9 +53,6 @@ def _index_path(dispatcher) -> Path | None:
 def _scene_kernels(model: str, bodies: int, method: str, catalogue: bool) -> list:
     """The jitted functions a run of (model, bodies) with ``method`` calls first: the
     trajectory kernels, the method, the system, and the catalogue's variational equations."""
-    from ..kernels import METHODS, orbit
-    from ..systems import get_system, variational
-
     system = get_system(model, bodies)
     kernels = [orbit.classify_near, orbit.record, METHODS[method].advance, system.rhs]
     if catalogue:
@@ -64,8 +75,6 @@ def missing_kernels(model: str = "duffing", bodies: int = 2, method: str = "auto
 
 def cache_folder() -> Path | None:
     """The folder of this source version's compiled kernels (None without a disk cache)."""
-    from ..kernels import orbit
-
     path = _index_path(orbit.classify_near)
     return path.parent.parent if path is not None else None
 
@@ -73,15 +82,13 @@ def cache_folder() -> Path | None:
 def compile_notice(scene=None) -> str | None:
     """The notice for a run of ``scene`` (a loaded scene, or None for the default pair),
     or None when every kernel it needs is cached."""
-    from ..kinds import get as kind_of
-
     if scene is None:
         model, bodies, method, catalogue = "duffing", 2, "auto", True
     else:
         model, bodies = scene.system.model, scene.system.bodies
         method = scene.integrator.resolved_method
-        catalogue = (scene.catalogue is not None
-                     or kind_of(scene.analysis.kind).searches_attractors)
+        catalogue = (scene.catalogue is not None  # a catalogue kind searches without one
+                     or getattr(scene.analysis, "searches_attractors", False))
     if not missing_kernels(model, bodies, method, catalogue):
         return None
     return NOTICE.format(minutes=COLD_MINUTES, folder=cache_folder())
@@ -109,15 +116,6 @@ class Step:
 def _steps(model: str | None = None) -> list:
     """(description, callable) pairs covering every kernel signature the CLI uses, for
     one model (None: all)."""
-    import numpy as np
-
-    from ..config import IntegratorSettings
-    from ..kernels import METHODS
-    from ..systems import REGISTRY
-    from .catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
-    from .engine import Problem, RecurrenceCells, classify_state, flow, record_trajectory
-    from .step_stability import rk4_step_warning
-
     def run_system(system, method):
         problem = Problem(system, system.defaults(),
                           IntegratorSettings(method=method, max_periods=2, cell_size=0.5))
@@ -136,7 +134,6 @@ def _steps(model: str | None = None) -> list:
         amplitude(problem, x0, 1, samples=8)
 
     def run_lyapunov(system):  # Benettin on the variational equations (kind lyapunov)
-        from .lyapunov import lyapunov_spectrum
 
         state = np.zeros(system.dim)
         state[0] = 0.5
@@ -151,7 +148,7 @@ def _steps(model: str | None = None) -> list:
         steps.append((f"{name} {kind}: rk4 step check",
                       lambda s=system: rk4_step_warning(Problem(s, s.defaults()))))
         for method in METHODS:
-            if method == "exact" and not system.piecewise_linear:
+            if method_traits(method).closed_form and not system.piecewise_linear:
                 continue
             steps.append((f"{name} {kind}: {method}", lambda s=system, m=method: run_system(s, m)))
         if bodies == 1:
@@ -195,16 +192,10 @@ def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]
     another in this process: 414 s on 2 cores (2026-11-26), against about half that in
     two processes.
     """
-    import os
-
-    from ..kernels.numba_cache import SAVES_LOCKED
-
     steps = _steps()
     workers = min(workers or os.cpu_count() or 1, len(steps))
     if workers <= 1 or not SAVES_LOCKED:
         return _run_steps(None, verbose)
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
 
     context = multiprocessing.get_context("spawn")  # fresh processes: nothing compiled yet
     with ProcessPoolExecutor(workers, mp_context=context) as pool:

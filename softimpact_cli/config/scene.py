@@ -11,23 +11,18 @@ import hashlib
 import math
 import os
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..kernels import ALIASES, METHOD_MODULES
+from ..kernels import ALIASES, METHOD_MODULES, MethodTraits, method_traits
 from ..kernels.cells import MAX_CELL_DIM
-from ..kinds import ANALYSIS_KINDS, KINDS, SWEEP_KINDS, SceneContext  # noqa: F401
-from ..kinds.bifurcation import BifurcationAnalysis  # noqa: F401
-from ..kinds.catalogue import CatalogueAnalysis  # noqa: F401
-from ..kinds.dcrit import CriticalDistanceAnalysis  # noqa: F401
-from ..kinds.sweeps import SweepAnalysis  # noqa: F401
-from ..kinds.trajectory import TrajectoryAnalysis  # noqa: F401
 from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
-from ..systems.base import SUPPORTED_BODIES
+from ..systems.base import SUPPORTED_BODIES, forcing_period_of
+from ..systems.piecewise_linear import exact_refusal
 from .axes import COUPLING_AXES
 from .limits import (
     MAX_NESTING,
@@ -41,9 +36,36 @@ from .sweep import (
     Grid,
     InitialConditions,
 )
-from .verification import VerificationSettings, read_verification
+from .verification import VerificationSettings
 
 METHODS = (*METHOD_MODULES, *ALIASES)  # the kernels' registry
+
+
+def forcing_period(values: Mapping[str, Any]) -> float:
+    """The forcing period T = 2 pi / w of a parameter point (``values["w"]``)."""
+    return forcing_period_of(values["w"])
+
+
+@dataclass(frozen=True)
+class SceneContext:
+    """What reading a kind's sections needs from the rest of the scene.
+
+    check_axis(axis, value) -> what is wrong with ``value`` on a grid/design axis, or None.
+    """
+
+    source: str
+    doc: Mapping[str, Any]
+    system: System
+    values: Mapping[str, Any]
+    period: float  # forcing period 2 pi / w
+    check_axis: Callable[[str, float], str | None]
+
+    def refuse(self, *sections: str) -> None:
+        """One line when the scene has a section this kind does not read."""
+        for name in sections:
+            if name in self.doc:
+                raise ConfigError(f"{self.source}: [{name}]: not used by kind "
+                                  f"{self.doc.get('analysis', {}).get('kind', 'trajectory')!r}")
 
 
 @dataclass(frozen=True)
@@ -80,6 +102,11 @@ class IntegratorSettings:
         """The kernel method the run uses ('stiff' is the L-stable Rodas4; 'auto' runs the
         adaptive explicit pair and switches to Rodas4 where its step is stability bound)."""
         return ALIASES.get(self.method, self.method)
+
+    @property
+    def traits(self) -> MethodTraits:
+        """What the method is: has a tolerance, fixed step, closed form (kernels)."""
+        return method_traits(self.method)
 
 
 @dataclass(frozen=True)
@@ -188,14 +215,6 @@ def _read_integrator(source: str, doc: dict) -> IntegratorSettings:
     return settings
 
 
-def _read_analysis(sec: Section, ctx: SceneContext):
-    """The [analysis] keys of the scene's kind (each kind reads its own)."""
-    kind = sec.choice("kind", "trajectory", tuple(KINDS))  # the registry, at call time
-    analysis = KINDS[kind].read(sec, ctx)
-    sec.finish()
-    return analysis
-
-
 def scene_stem(source: str) -> str:
     """The name a result takes from its scene: the file's stem, "scene" for a scene given
     as text or a mapping (source "<string>", "<dict>")."""
@@ -221,8 +240,11 @@ SECTIONS = ("system", "coupling", "integrator", "analysis", "output", "grid",
             "initial_conditions", "catalogue", "verification")
 
 
-def parse_scene(text: str, source: str = "<string>") -> Scene:
-    """Validate a scene given as TOML text; ``source`` names it in error messages."""
+def read_common(text: str, source: str = "<string>"
+                ) -> tuple[dict, str, System, dict[str, Any], IntegratorSettings, SceneContext]:
+    """The sections every scene has, validated: (TOML document, scene text, system,
+    parameter values, integrator settings, the context a kind reads its sections with).
+    The method's default waits for the grid (``settle_method``)."""
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -246,28 +268,33 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
         raise ConfigError(f"{source}: [integrator] cell_size: recurrence cells hold states of "
                           f"at most {MAX_CELL_DIM} variables, this system has {system.dim}; "
                           "use cell_size = 0")
-    period = 2.0 * math.pi / values["w"]
+    period = forcing_period(values)
     ctx = SceneContext(source, doc, system, values, period,
                        lambda axis, v: _check_axis(system, axis, v, period))
-    analysis = _read_analysis(Section(source, "analysis", doc.get("analysis", {})), ctx)
-    output = _read_output(source, doc, Path("."))
-    read = KINDS[analysis.kind].read_sections(analysis, ctx)
-    analysis, grid = read.analysis, read.grid
-    initial, catalogue = read.initial_conditions, read.catalogue
+    return doc, text, system, values, integrator, ctx
+
+
+def settle_method(source: str, doc: dict, text: str, system: System, values: dict[str, Any],
+                  grid: Grid | None, integrator: IntegratorSettings
+                  ) -> tuple[IntegratorSettings, str]:
+    """(integrator, scene text) once the scene's grid is known: the default method chosen
+    over every parameter point it runs ("exact" where all allow it, said in the text),
+    and "exact" checked at each of them."""
     points = _parameter_points(values, grid)
     integrator = _default_method(doc, system, points, integrator)
-    if integrator.method == "exact" and "method" not in doc.get("integrator", {}):
+    if integrator.traits.closed_form and "method" not in doc.get("integrator", {}):
         # said in the text: its hash (resume, caches) then tells the runs apart from
         # those made when the default was "auto"
         text += ('\n# [integrator] method = "exact": the default for a piecewise-linear '
                  "system (no method, rtol or atol set)\n")
-    if integrator.resolved_method == "exact":
+    if integrator.traits.closed_form:
         _check_exact(source, system, points, integrator)
-    return Scene(source=source, text=text, system=system, values=values,
-                 integrator=integrator, analysis=analysis, output=output,
-                 sections={k: dict(v) for k, v in doc.items()}, grid=grid,
-                 initial_conditions=initial, catalogue=catalogue,
-                 verification=_read_verification(source, doc, analysis.kind))
+    return integrator, text
+
+
+def read_output(source: str, doc: dict) -> Path:
+    """[output] path of a scene (see ``_read_output``)."""
+    return _read_output(source, doc, Path("."))
 
 
 def _parameter_points(values: dict, grid: Grid | None) -> list[dict]:
@@ -289,7 +316,6 @@ def _default_method(doc: dict, system, points: list[dict], integrator: Integrato
         return integrator
     if not system.piecewise_linear:
         return integrator
-    from ..systems.piecewise_linear import exact_refusal
 
     if any(exact_refusal(system, system.pack(values)) is not None for values in points):
         return integrator
@@ -300,8 +326,6 @@ def _check_exact(source: str, system, points: list[dict],
                  integrator: IntegratorSettings) -> None:
     """Method 'exact' integrates piecewise-linear systems only, switches located, at
     every parameter point of the scene."""
-    from ..systems.piecewise_linear import exact_refusal
-
     if not integrator.locate_switches:
         raise ConfigError(f"{source}: [integrator] method = \"exact\" locates every switch; "
                           "locate_switches = false is for rk4 (the study's plain scheme)")
@@ -314,17 +338,6 @@ def _check_exact(source: str, system, points: list[dict],
                   if varying else "")
             raise ConfigError(f"{source}: [integrator] method = \"exact\": {why}{at}; use "
                               "\"auto\"")
-
-
-def _read_verification(source: str, doc: dict, kind: str) -> VerificationSettings | None:
-    """[verification] of a sweep kind (its defaults when absent); refused elsewhere."""
-    if KINDS[kind].sweep:
-        return read_verification(source, doc)
-    if "verification" in doc:
-        raise ConfigError(f"{source}: [verification]: only for the analyses "
-                          f"{', '.join(SWEEP_KINDS)} (sweeps of labelled trajectories); "
-                          f"kind is {kind!r}")
-    return None
 
 
 def _check_axis(system: System, axis: str, value: float, period: float) -> str | None:
@@ -354,34 +367,6 @@ def thin(values: tuple[float, ...], most: int) -> tuple[float, ...]:
     return tuple(values[i] for i in keep)
 
 
-def quick(scene: Scene, plane: int = QUICK_PLANE, samples: int = QUICK_SAMPLES,
-          flag: str = "--quick", axis: int | None = QUICK_AXIS) -> Scene:
-    """The scene at lower resolution (CI, previews): planes at most ``plane`` per axis, at
-    most ``samples`` random samples and, unless ``axis`` is None, at most ``axis`` values
-    per swept grid axis (endpoints kept; explicit panels stay), and what the kind's
-    ``shrink`` reduces (phases of a d_crit curve, steps of a bifurcation diagram). The
-    stored scene text says so (its hash differs)."""
-    from dataclasses import replace
-
-    ic = scene.initial_conditions
-    if ic is not None and ic.kind == "plane":
-        ic = replace(ic, resolution=tuple(min(r, plane) for r in ic.resolution))
-    elif ic is not None and ic.kind == "random":
-        ic = replace(ic, n=min(ic.n, samples))
-    grid, analysis = scene.grid, scene.analysis
-    note = f"planes at most {plane} x {plane}, at most {samples} random samples"
-    if axis is not None:
-        note += f", at most {axis} values per swept grid axis"
-        shrink = KINDS[analysis.kind].shrink
-        if shrink is not None:
-            analysis, grid, more = shrink(analysis, grid, axis)
-            note += more
-    if ic is scene.initial_conditions and grid is scene.grid and analysis is scene.analysis:
-        return scene
-    return replace(scene, initial_conditions=ic, grid=grid, analysis=analysis,
-                   text=scene.text + f"\n# {flag}: {note}\n")
-
-
 def result_path(scene: Scene, option: str | None) -> Path:
     """The result file of a run: ``option`` (``-o``) when given, else [output] path.
 
@@ -397,11 +382,11 @@ def result_path(scene: Scene, option: str | None) -> Path:
         raise ConfigError(f"-o/--output: {exc}") from None
 
 
-def load_scene(path: str | os.PathLike) -> Scene:
-    """Read and validate the scene file at ``path``."""
+def read_scene_file(path: str | os.PathLike) -> str:
+    """The text of the scene file at ``path``; ConfigError naming it when it cannot be read."""
     path = Path(path)
     try:
-        text = path.read_text()
+        return path.read_text()
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such scene file") from None
     except IsADirectoryError:
@@ -409,4 +394,3 @@ def load_scene(path: str | os.PathLike) -> Scene:
     except (OSError, UnicodeDecodeError) as exc:
         reason = getattr(exc, "strerror", None) or exc.__class__.__name__
         raise ConfigError(f"{path}: cannot read scene file ({reason})") from None
-    return parse_scene(text, str(path))

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..systems.base import check_bodies
 from .axes import COUPLING_AXES, GRID_AXES
+from .expressions import parse_multiple
 from .limits import (
     MAX_GRID_VALUES,
     MAX_INITIAL_CONDITIONS,
@@ -162,8 +163,6 @@ def _values(sec: Section, key: str, symbol: str | None, unit: float) -> tuple[fl
     def one(v, where=key):
         if symbol is not None:
             try:
-                from .expressions import parse_multiple
-
                 return parse_multiple(v, symbol, unit)
             except ValueError as exc:
                 raise sec.fail(where, str(exc)) from None
@@ -266,8 +265,6 @@ def _check_parameter(sec: Section, where: str, axis: str, values: Mapping) -> No
 def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period: float,
                  check_value) -> Grid:
     """[grid] panels = [{d = .., phi = ..}, ...]: an explicit list of parameter points."""
-    from .expressions import parse_multiple
-
     panels = sec.raw("panels")
     sec.finish(("panels",))  # panels exclude the other grid keys
     if not isinstance(panels, list) or not panels or not all(isinstance(p, dict)

@@ -14,6 +14,7 @@ and a line in METHOD_MODULES.
 """
 
 from importlib import import_module
+from typing import NamedTuple
 
 from .numba_cache import source_keyed_cache, stabilise
 
@@ -32,3 +33,22 @@ with source_keyed_cache():  # every jitted module of the package, imported here
 for _module in _modules.values():
     stabilise(_module)
 METHODS = {name: _modules[module] for name, module in METHOD_MODULES.items()}
+
+
+class MethodTraits(NamedTuple):
+    """What a method is, as data on its module: ``tolerance`` (rtol and atol steer its
+    steps), ``fixed_step`` (steps_per_period steps per forcing period), ``closed_form``
+    (the exact flow of piecewise-linear systems)."""
+
+    tolerance: bool
+    fixed_step: bool
+    closed_form: bool
+
+
+def method_traits(name: str) -> MethodTraits:
+    """The traits of method ``name`` (an alias too); all False for an unknown name (a
+    result written by another version)."""
+    module = METHODS.get(ALIASES.get(name, name))
+    if module is None:
+        return MethodTraits(False, False, False)
+    return MethodTraits(module.HAS_TOLERANCE, module.FIXED_STEP, module.CLOSED_FORM)

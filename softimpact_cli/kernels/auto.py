@@ -48,6 +48,12 @@ from .layout import (
 )
 from .linalg import inf_norm, matmul_into
 
+# traits of the method (kernels.method_traits): rtol/atol steer its steps; steps_per_period
+# fixed steps per forcing period; the closed-form flow of piecewise-linear systems
+HAS_TOLERANCE = True
+FIXED_STEP = False
+CLOSED_FORM = False
+
 ORDER = 4  # the lower of the two methods' orders (dopri5 5, rodas4 4)
 STIFF_EDGE = 3.25  # h |lambda| above which dopri5's step is stability bound (dopri5.f)
 STIFF_HITS = 15  # dopri5.f's count of stability-bound steps before declaring stiffness

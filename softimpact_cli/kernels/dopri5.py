@@ -16,6 +16,12 @@ from .driver import adaptive_loop, no_change, no_refinement, same_method
 from .layout import ATOL, K0, M0, RTOL, YNEW, YTMP
 from .switching import mode_of
 
+# traits of the method (kernels.method_traits): rtol/atol steer its steps; steps_per_period
+# fixed steps per forcing period; the closed-form flow of piecewise-linear systems
+HAS_TOLERANCE = True
+FIXED_STEP = False
+CLOSED_FORM = False
+
 ORDER = 5
 STAGES = 7
 C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])

@@ -57,6 +57,12 @@ from .layout import (
 )
 from .linalg import inf_norm, matmul_into
 
+# traits of the method (kernels.method_traits): rtol/atol steer its steps; steps_per_period
+# fixed steps per forcing period; the closed-form flow of piecewise-linear systems
+HAS_TOLERANCE = False
+FIXED_STEP = False
+CLOSED_FORM = True
+
 HEADER = 4  # n_modes, aug, w, n_surfaces
 STEP_PHASE = 2.0  # rad the fastest mode turns in one step (systems.piecewise_linear)
 TAYLOR_TERMS = 60

@@ -16,6 +16,12 @@ from .driver import fixed_loop
 from .layout import K0, YNEW, YTMP
 from .switching import mode_of
 
+# traits of the method (kernels.method_traits): rtol/atol steer its steps; steps_per_period
+# fixed steps per forcing period; the closed-form flow of piecewise-linear systems
+HAS_TOLERANCE = False
+FIXED_STEP = True
+CLOSED_FORM = False
+
 ORDER = 4
 STAGES = 4
 C = np.array([0.0, 0.5, 0.5, 1.0])

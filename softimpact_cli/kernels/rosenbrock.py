@@ -47,6 +47,12 @@ from .layout import ATOL, DFDT, F0, FT, JAC, M0, N_STIFF_STEPS, PIV, RTOL, U0, Y
 from .linalg import fd_jacobian, lu_factor, lu_solve
 from .switching import mode_of, poly_rate
 
+# traits of the method (kernels.method_traits): rtol/atol steer its steps; steps_per_period
+# fixed steps per forcing period; the closed-form flow of piecewise-linear systems
+HAS_TOLERANCE = True
+FIXED_STEP = False
+CLOSED_FORM = False
+
 ORDER = 4  # of the solution; the embedded one is 3 (error estimate ~ h^4)
 STAGES = 6
 GAMMA = 0.25

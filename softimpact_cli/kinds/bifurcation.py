@@ -3,12 +3,22 @@ destruction located."""
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, replace
 
+import numpy as np
+import xarray as xr
+
+from ..analysis.bifurcation import bifurcation_dataset, d_values
+from ..analysis.catalogue import catalogue_dataset
+from ..analysis.labels import parse_label
 from ..config.axes import allowed_axes
-from ..config.reader import positive
+from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue
-from . import AnalysisKind, PlotSpec, Sections, forcing_period
+from ..report.compare import bifurcation_comparison_text, compare_bifurcations
+from ..store.catalogues import scene_catalogue
+from ..sweep.check import tightened
+from .base import AnalysisKind, PlotSpec, Sections, forcing_period
 
 QUICK_STEPS = 50  # --quick: largest number of d steps of a bifurcation diagram
 MAX_STEPS = 100_000
@@ -30,8 +40,6 @@ class BifurcationAnalysis:
 
 
 def read(sec, ctx) -> BifurcationAnalysis:
-    from ..analysis.labels import parse_label
-
     allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
     if ctx.system.bodies != 2 and not sec.has("parameter"):
         raise sec.fail("kind", "bifurcation along d needs a pair ([system] bodies = 2); one "
@@ -78,12 +86,6 @@ def shrink(analysis, grid, axis: int):
 def run(scene, progress=None, **_):
     """Follow the scene's branches along d (figure 7) or the scene's parameter, with the
     catalogue attached."""
-    import xarray as xr
-
-    from ..analysis.bifurcation import bifurcation_dataset, d_values
-    from ..analysis.catalogue import catalogue_dataset, scene_catalogue
-    from ..config.reader import ConfigError
-
     a = scene.analysis
     values = dict(scene.values)
     cat = scene_catalogue(scene)
@@ -103,8 +105,6 @@ def run(scene, progress=None, **_):
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:
-    from ..analysis.bifurcation import d_values
-
     a = scene.analysis
     branches = f"{len(a.branches)} branches" if a.branches else \
         "every solution of the catalogue"
@@ -112,10 +112,23 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"{a.parameter} from {a.start:g} to {a.stop:g} by {a.step:g}")
 
 
-def check(scene, sample, seed, result=None) -> dict:
-    from .check import check_bifurcation
-
-    return check_bifurcation(scene)
+def check(scene, sample=None, seed=None, result=None) -> dict:
+    """``softimpact check``: the destruction points at the scene's settings and at
+    tightened ones with half the d step."""
+    start = time.perf_counter()
+    a = run(scene)
+    mid = time.perf_counter()
+    b = run(replace(scene, integrator=tightened(scene.integrator),
+                                   analysis=replace(scene.analysis,
+                                                    step=scene.analysis.step / 2)))
+    end = time.perf_counter()
+    da, db = a["destroyed_at"].values, b["destroyed_at"].values
+    both = np.isfinite(da) & np.isfinite(db)
+    changed = np.sum(np.isfinite(da) != np.isfinite(db))
+    return {"kind": "destruction points", "sample": int(da.size),
+            "max_change": float(np.max(np.abs(da[both] - db[both]))) if both.any() else 0.0,
+            "appeared_or_vanished": int(changed), "wall_s": mid - start,
+            "tight_wall_s": end - mid, "wall_ratio": (end - mid) / max(mid - start, 1e-12)}
 
 
 def info_lines(ds) -> list[str]:
@@ -127,14 +140,10 @@ def info_lines(ds) -> list[str]:
 
 
 def compare(a, b, name_a: str, name_b: str) -> dict:
-    from ..report.compare import compare_bifurcations
-
     return compare_bifurcations(a, b)
 
 
 def compare_text(report: dict, max_points: int) -> list[str]:
-    from ..report.compare import bifurcation_comparison_text
-
     return bifurcation_comparison_text(report)
 
 

@@ -11,29 +11,8 @@ points. Each report carries both wall times and their ratio.
 
 from __future__ import annotations
 
-import time
-from dataclasses import replace
-
-import numpy as np
-
-from ..config import IntegratorSettings, Scene
-
-
-def tightened(s: IntegratorSettings) -> IntegratorSettings:
-    """The reference settings; capture and recurrence cells off, so that their error is
-    measured too."""
-    return replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
-                   convergence_tol=s.convergence_tol / 10, max_periods=2 * s.max_periods,
-                   steps_per_period=4 * s.steps_per_period, capture_tol=0.0, cell_size=0.0)
-
-
-def shortcuts(s: IntegratorSettings) -> bool:
-    """Whether ``s`` labels some trajectories early: capture near known orbits or cells."""
-    return s.capture_tol > 0.0 or s.cell_size > 0.0
-
-
-def without_shortcuts(s: IntegratorSettings) -> IntegratorSettings:
-    return replace(s, capture_tol=0.0, cell_size=0.0)
+from ..config import Scene
+from . import KINDS, analysis_kinds
 
 
 def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> dict:
@@ -43,146 +22,11 @@ def check_scene(scene: Scene, sample: int = 200, seed: int = 0, result=None) -> 
     scene's settings (so that what depends on the order of a run, recurrence cells, is
     checked as it ran) and its wall time per trajectory for their cost.
     """
-    from . import ANALYSIS_KINDS, KINDS
-
     kind = KINDS[scene.analysis.kind]
     if kind.check is None:
-        covered = ", ".join(k for k in ANALYSIS_KINDS if KINDS[k].check is not None)
+        covered = ", ".join(k for k in analysis_kinds() if KINDS[k].check is not None)
         raise ValueError(f"check covers the kinds {covered}, not {kind.name!r}")
     return kind.check(scene, sample, seed, result)
-
-
-def sample_indices(total: int, sample: int, seed: int) -> np.ndarray:
-    """``min(sample, total)`` distinct flat indices of a sweep's trajectories (plan
-    order), drawn at random with ``seed``, sorted."""
-    rng = np.random.default_rng(seed)
-    return np.sort(rng.choice(total, size=min(sample, total), replace=False))
-
-
-def rerun_labels(scene: Scene, settings: IntegratorSettings, catalogues: dict,
-                 names: tuple[str, ...], picks: np.ndarray, executor=None, result=None
-                 ) -> tuple[np.ndarray, float]:
-    """(label codes, wall s) of the trajectories at flat indices ``picks`` run at
-    ``settings``, each in a one-trajectory chunk (so recurrence cells never carry over
-    from one to the next), on ``executor`` (default: this process). Attractors that are
-    not periodic are named after ``result``'s where they match (``second_stage``)."""
-    labels, wall, _ = rerun_named(scene, settings, catalogues, names, picks, executor, result)
-    return labels, wall
-
-
-def rerun_named(scene: Scene, settings: IntegratorSettings, catalogues: dict,
-                names: tuple[str, ...], picks: np.ndarray, executor=None, result=None):
-    """``rerun_labels`` and the table of the attractors that are not periodic it named
-    (``second_stage.relabel``): pass it as ``result`` to a rerun compared with this one,
-    so that the same attractor takes the same number in both."""
-    from ..sweep.executors import LocalExecutor
-    from ..sweep.runner import sweep_context
-    from ..sweep.second_stage import relabel, unpack
-
-    ic = scene.initial_conditions
-    t0 = ic.random_t0(2 * np.pi / float(scene.values["w"])) if ic.t0 is None else None
-    context = sweep_context(replace(scene, integrator=settings), catalogues, names, t0)
-    chunks = [(j, int(i), int(i) + 1) for j, i in enumerate(picks)]
-    labels = np.empty(len(picks), dtype=np.int64)
-    start = time.perf_counter()
-    by_flat: dict[int, int] = {}
-    recurrent = []
-    for j, chunk in (executor or LocalExecutor(1)).run(context, chunks):
-        labels[j] = chunk["label"][0]
-        by_flat[int(picks[j])] = j
-        recurrent += unpack(chunk)
-    table = None
-    if recurrent:  # name the second stage's sets (flat order), as the result was named
-        flat_labels = np.zeros(max(by_flat) + 1, dtype=np.int64)
-        table = relabel(context, flat_labels, {}, recurrent, tuple(scene.system.state_names),
-                        result)
-        for r in recurrent:
-            labels[by_flat[r.flat]] = flat_labels[r.flat]
-    return labels, time.perf_counter() - start, table if table is not None else result
-
-
-def label_changes(before: np.ndarray, after: np.ndarray, names: tuple[str, ...]
-                  ) -> dict[str, int]:
-    """{"A -> B": count} of the positions where the label codes differ."""
-    from ..analysis.labels import name_of
-
-    changes: dict[str, int] = {}
-    for a, b in zip(before[before != after], after[before != after], strict=True):
-        key = f"{name_of(a, names)} -> {name_of(b, names)}"
-        changes[key] = changes.get(key, 0) + 1
-    return changes
-
-
-def check_sweep(scene: Scene, sample: int, seed: int, result=None, executor=None) -> dict:
-    """Labels at the scene's settings (``result``'s stored labels when given) against
-    labels at ``tightened`` settings, on ``sample`` random trajectories."""
-    from ..sweep.runner import prepare_catalogues
-
-    catalogues, names = prepare_catalogues(scene)
-    total = scene.grid.size * scene.initial_conditions.count
-    picks = sample_indices(total, sample, seed)
-    named = result  # whose attractor numbers the reruns keep
-    if result is not None:
-        scene_labels = result["label"].values.ravel()[picks]
-        scene_wall = float(result.attrs["wall_s"]) * picks.size / total
-    else:
-        scene_labels, scene_wall, named = rerun_named(scene, scene.integrator, catalogues,
-                                                      names, picks, executor)
-    tight_labels, tight_wall = rerun_labels(scene, tightened(scene.integrator), catalogues,
-                                            names, picks, executor, named)
-    changed = scene_labels != tight_labels
-    report = {}
-    if result is not None and shortcuts(scene.integrator) and changed.any():
-        # the same settings without capture or cells: tells their error from the
-        # tolerance's (nothing to tell when no label changed)
-        alone, _ = rerun_labels(scene, without_shortcuts(scene.integrator), catalogues, names,
-                                picks, executor, named)
-        report["changed_alone"] = int((alone != tight_labels).sum())
-    return {**report, "kind": "labels", "sample": int(picks.size),
-            "changed": int(changed.sum()),
-            "changed_share": float(changed.mean()) if picks.size else 0.0,
-            "changes": label_changes(scene_labels, tight_labels, names),
-            "wall_s": scene_wall, "tight_wall_s": tight_wall,
-            "wall_ratio": tight_wall / max(scene_wall, 1e-12)}
-
-
-def check_dcrit(scene: Scene, sample: int, seed: int) -> dict:
-    from ..analysis import critical_distance as cd
-    from ..analysis.catalogue import scene_catalogue
-
-    cat = scene_catalogue(scene)
-    rng = np.random.default_rng(seed)
-    phis = np.sort(rng.choice(np.array(scene.analysis.phis), size=min(sample, 16),
-                              replace=False))
-    out = {}
-    for key, settings in (("scene", cd.TIGHT), ("tight", tightened(cd.TIGHT))):
-        start = time.perf_counter()
-        ds = cd.critical_distances(scene.system, dict(scene.values), list(cat.attractors),
-                                   phis, scene.analysis.samples, integrator=settings)
-        out[key] = (ds["d_crit"].values, time.perf_counter() - start)
-    diff = float(np.max(np.abs(out["scene"][0] - out["tight"][0])))
-    return {"kind": "d_crit", "sample": int(phis.size), "max_change": diff,
-            "wall_s": out["scene"][1], "tight_wall_s": out["tight"][1],
-            "wall_ratio": out["tight"][1] / max(out["scene"][1], 1e-12)}
-
-
-def check_bifurcation(scene: Scene) -> dict:
-    from .bifurcation import run as bifurcation_result
-
-    start = time.perf_counter()
-    a = bifurcation_result(scene)
-    mid = time.perf_counter()
-    b = bifurcation_result(replace(scene, integrator=tightened(scene.integrator),
-                                   analysis=replace(scene.analysis,
-                                                    step=scene.analysis.step / 2)))
-    end = time.perf_counter()
-    da, db = a["destroyed_at"].values, b["destroyed_at"].values
-    both = np.isfinite(da) & np.isfinite(db)
-    changed = np.sum(np.isfinite(da) != np.isfinite(db))
-    return {"kind": "destruction points", "sample": int(da.size),
-            "max_change": float(np.max(np.abs(da[both] - db[both]))) if both.any() else 0.0,
-            "appeared_or_vanished": int(changed), "wall_s": mid - start,
-            "tight_wall_s": end - mid, "wall_ratio": (end - mid) / max(mid - start, 1e-12)}
 
 
 def over_limit(report: dict, fail_over: float | None) -> str | None:

@@ -6,10 +6,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from ..analysis.continuation import Settings
+from ..analysis.continuation_branches import continue_starts
+from ..analysis.continuation_dataset import continuation_dataset
+from ..analysis.continuation_sweep import sweeps
+from ..analysis.engine import Problem, classify_state
+from ..analysis.shooting import OrbitMap
 from ..config.axes import allowed_axes
 from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue
-from . import AnalysisKind, PlotSpec, Sections, read_state
+from ..kernels.codes import CONVERGED
+from ..report.continuation import continuation_info, format_continuation
+from ..store.catalogues import scene_catalogue
+from .base import AnalysisKind, PlotSpec, Sections, read_state
 
 STARTS = ("catalogue", "state")
 QUICK_POINTS = 60  # --quick: points per direction of a branch
@@ -115,16 +124,12 @@ def starts(scene) -> list[tuple[str, object, int]]:
     """(name, state at t = 0, period) of every start of the scene."""
     a = scene.analysis
     if a.start == "state":
-        from ..analysis.engine import Problem, classify_state
-        from ..kernels.codes import CONVERGED
-
         cls = classify_state(Problem(scene.system, scene.values, scene.integrator), a.state)
         if cls.status != CONVERGED:
             raise ConfigError(f"{scene.source}: [analysis] state: the trajectory from it does "
                               f"not converge to a periodic orbit ({cls.outcome}); start "
                               f"closer to one or use start = 'catalogue'")
         return [("orbit from state", cls.orbit[-1], cls.period)]
-    from ..analysis.catalogue import scene_catalogue
 
     cat = scene_catalogue(scene)
     for name in a.branches:
@@ -137,12 +142,6 @@ def starts(scene) -> list[tuple[str, object, int]]:
 
 
 def run(scene, progress=None, **_):
-    from ..analysis.continuation import Settings
-    from ..analysis.continuation_branches import continue_starts
-    from ..analysis.continuation_dataset import continuation_dataset
-    from ..analysis.continuation_sweep import sweeps
-    from ..analysis.shooting import OrbitMap
-
     a = scene.analysis
     values = dict(scene.values)
     lam0 = float(values[a.parameter])
@@ -184,19 +183,6 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"doublings, branch points) deep{brute}")
 
 
-def summary(ds) -> dict:
-    from ..report.continuation import continuation_info
-
-    return continuation_info(ds)
-
-
-def report(ds) -> str:
-    from ..report.continuation import format_continuation
-
-    return format_continuation(ds)
-
-
-
 # what each [analysis] key means (the scene-key reference)
 KEYS = {
     "parameter": "the continued parameter (its value in the scene is where the branches start)",
@@ -220,9 +206,9 @@ KINDS = (AnalysisKind("continuation", "branches of periodic orbits (stable and u
                       "followed in one parameter; folds, branch points, period doublings, "
                       "Neimark-Sacker and grazing located", read, plan, sections=sections,
                       shrink=shrink,
-                      run=run, summary=summary, report=report,
+                      run=run, summary=continuation_info, report=format_continuation,
                       variables=("parameter", "state", "branch_name"),
-                      info_after=lambda ds: report(ds).splitlines(),
+                      info_after=lambda ds: format_continuation(ds).splitlines(),
                       progress_unit="branches",
                       keys=KEYS,
                       plot=PlotSpec("Branches against the parameter (stable solid, unstable "

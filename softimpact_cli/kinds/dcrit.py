@@ -3,14 +3,23 @@
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, replace
 
 import numpy as np
+import xarray as xr
 
+from ..analysis.catalogue import catalogue_dataset
+from ..analysis.critical_distance import TIGHT, critical_distances, traces
 from ..config.expressions import parse_multiple
 from ..config.reader import ConfigError
+from ..config.scene import thin
 from ..config.sweep import read_catalogue, read_grid
-from . import AnalysisKind, PlotOption, PlotSpec, Sections, forcing_period
+from ..plot import dcrit
+from ..report.compare import compare_dcrit, dcrit_comparison_text
+from ..store.catalogues import scene_catalogue
+from ..sweep.check import tightened
+from .base import AnalysisKind, PlotOption, PlotSpec, Sections, forcing_period
 
 QUICK_PHIS = 64  # --quick: largest number of phases of a critical-distance curve
 DEFAULT_PHIS = 256  # phases over [0, 2 pi) without [grid] phi
@@ -60,19 +69,12 @@ def sections(analysis, ctx) -> Sections:
 
 
 def shrink(analysis, grid, axis: int):
-    from ..config.scene import thin
-
     return (replace(analysis, phis=thin(analysis.phis, QUICK_PHIS)), grid,
             f", at most {QUICK_PHIS} phases")
 
 
 def run(scene, progress=None, **_):
     """d_crit(phi) of every combination, the traces of fig. 5 (b-d), and the catalogue."""
-    import xarray as xr
-
-    from ..analysis.catalogue import catalogue_dataset, scene_catalogue
-    from ..analysis.critical_distance import critical_distances, traces
-
     a = scene.analysis
     values = dict(scene.values)
     cat = scene_catalogue(scene)
@@ -97,28 +99,31 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             + f", {a.samples} samples per joint orbit")
 
 
-def check(scene, sample, seed, result=None) -> dict:
-    from .check import check_dcrit
-
-    return check_dcrit(scene, sample, seed)
-
-
-def compare(a, b, name_a: str, name_b: str) -> dict:
-    from ..report.compare import compare_dcrit
-
-    return compare_dcrit(a, b, name_a, name_b)
+def check(scene, sample: int, seed: int, result=None) -> dict:
+    """``softimpact check``: d_crit at up to 16 random phases of the scene, at its settings
+    and at tightened ones."""
+    cat = scene_catalogue(scene)
+    rng = np.random.default_rng(seed)
+    phis = np.sort(rng.choice(np.array(scene.analysis.phis), size=min(sample, 16),
+                              replace=False))
+    out = {}
+    for key, settings in (("scene", TIGHT), ("tight", tightened(TIGHT))):
+        start = time.perf_counter()
+        ds = critical_distances(scene.system, dict(scene.values), list(cat.attractors),
+                                   phis, scene.analysis.samples, integrator=settings)
+        out[key] = (ds["d_crit"].values, time.perf_counter() - start)
+    diff = float(np.max(np.abs(out["scene"][0] - out["tight"][0])))
+    return {"kind": "d_crit", "sample": int(phis.size), "max_change": diff,
+            "wall_s": out["scene"][1], "tight_wall_s": out["tight"][1],
+            "wall_ratio": out["tight"][1] / max(out["scene"][1], 1e-12)}
 
 
 def compare_text(report: dict, max_points: int) -> list[str]:
-    from ..report.compare import dcrit_comparison_text
-
     return dcrit_comparison_text(report)
 
 
 def draw(ds, combination=None):
     """``plot.dcrit``, refusing a combination the result does not hold."""
-    from ..plot import dcrit
-
     names = [str(n) for n in ds["combination_label"].values]
     if combination is not None and combination not in names:
         raise ConfigError(f"--combination: {combination!r} is not one of {', '.join(names)}")
@@ -140,7 +145,7 @@ KEYS = {
 
 KINDS = (AnalysisKind("dcrit", "critical distance d_crit(phi) of every combination", read,
                       plan, sections=sections, shrink=shrink, run=run, check=check,
-                      compare=compare, compare_text=compare_text, progress_unit="phases",
+                      compare=compare_dcrit, compare_text=compare_text, progress_unit="phases",
                       keys=KEYS,
                       variables=("d_crit", "combination_label"),
                       plot=PLOT),)

@@ -1,21 +1,28 @@
 """[analysis] kind = "design": (d, phi, k_c, c_c) where only the target solution survives.
 
-The [analysis] keys are read by ``config.design`` (shared with ``design --target``); the
+The [analysis] keys are read by ``kinds.design_settings`` (shared with ``design --target``); the
 method is ``analysis.design``, run through the sweep executors by ``sweep.design``.
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import replace
+
 from ..config.axes import COUPLING_AXES
 from ..config.limits import MAX_TRAJECTORIES, design_trajectories
 from ..config.reader import ConfigError
 from ..config.sweep import read_catalogue, read_initial_conditions
-from . import AnalysisKind, PlotSpec, Sections
+from ..report.info import design_summary, format_design
+from ..report.outcomes import design_counts
+from ..sweep.design import run_design
+from .base import AnalysisKind, PlotSpec, Sections
+from .design_settings import read_design
+from .fatal_shock import FatalShockAnalysis
+from .fatal_shock import run as fatal_shock_run
 
 
 def read(sec, ctx):
-    from ..config.design import read_design
-
     if ctx.system.bodies != 2:
         raise sec.fail("kind", "a design needs a pair ([system] bodies = 2)")
     return read_design(sec, ctx.values, ctx.check_axis)
@@ -48,8 +55,6 @@ def sections(analysis, ctx) -> Sections:
 
 
 def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
-    from ..sweep.design import run_design
-
     options = {} if echo is None else {"echo": echo}
     ds = run_design(scene, workers=workers, scheduler=scheduler, progress=progress,
                     **options)
@@ -65,13 +70,6 @@ def fatal_shocks(scene, ds, workers=None) -> dict:
     """The minimal fatal shock of the target at the pick and at the reference point
     (``fatal_shock_<role>*`` attributes; an upper bound, see ``analysis.fatal_shock``),
     over the design's sampled box: shocks up to half its diagonal."""
-    import math
-    from dataclasses import replace
-
-    from ..report.info import design_summary
-    from .fatal_shock import FatalShockAnalysis
-    from .fatal_shock import run as fatal_shock_run
-
     a, box = scene.analysis, scene.initial_conditions.box
     max_shock = 0.5 * math.sqrt(sum((hi - lo) ** 2 for lo, hi in box.values()))
     settings = FatalShockAnalysis("fatal_shock", a.target, SHOCK_PHASES, a.shock_directions,
@@ -107,26 +105,8 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"{a.phi_points} phases")
 
 
-def summary(ds) -> dict:
-    from ..report.info import design_summary
-
-    return design_summary(ds)
-
-
-def report(ds) -> str:
-    from ..report.info import format_design
-
-    return format_design(ds)
-
-
 def info_lines(ds) -> list[str]:
-    return [report(ds)]
-
-
-def outcome_counts(ds):
-    from ..report.outcomes import design_counts
-
-    return design_counts(ds)
+    return [format_design(ds)]
 
 
 
@@ -154,9 +134,9 @@ KEYS = {
 }
 
 KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target survives (see "
-                      "design)", read, plan, sections=sections, run=run, summary=summary,
-                      report=report, info_lines=info_lines, info_catalogue=False,
-                      outcome_counts=outcome_counts, progress_unit="trajectories",
+                      "design)", read, plan, sections=sections, run=run, summary=design_summary,
+                      report=format_design, info_lines=info_lines, info_catalogue=False,
+                      outcome_counts=design_counts, progress_unit="trajectories",
                       variables=("score", "share"),
                       options=("workers", "scheduler", "echo"),
                       keys=KEYS,

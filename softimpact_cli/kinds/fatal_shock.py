@@ -8,11 +8,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..analysis.engine import Problem, record_trajectory
+from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
 from ..config.axes import GRID_AXES
 from ..config.limits import MAX_SEED
-from ..config.reader import positive
+from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue
-from . import AnalysisKind, PlotSpec, Sections
+from ..report.fatal_shock import fatal_shock_lines, fatal_shock_summary
+from ..store.catalogues import scene_catalogue
+from ..sweep import label_states
+from .base import AnalysisKind, PlotSpec, Sections
 
 
 @dataclass(frozen=True)
@@ -60,8 +65,6 @@ def sections(analysis, ctx) -> Sections:
 
 def solution_orbit(scene, catalogue) -> np.ndarray:
     """The section points (t = 0 mod T) of the scene's solution in its catalogue."""
-    from ..config.reader import ConfigError
-
     found = catalogue.orbits
     name = scene.analysis.solution
     if name not in found:
@@ -71,11 +74,6 @@ def solution_orbit(scene, catalogue) -> np.ndarray:
 
 
 def run(scene, progress=None, workers=None, **_):
-    from ..analysis.catalogue import scene_catalogue
-    from ..analysis.engine import Problem, record_trajectory
-    from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
-    from ..sweep import label_states
-
     a = scene.analysis
     catalogue = scene_catalogue(scene)
     start = solution_orbit(scene, catalogue)[0]
@@ -104,19 +102,6 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"{a.scan} magnitudes up to {a.max_shock:g}, bisection to {a.tol:g}")
 
 
-def summary(ds) -> dict:
-    from ..report.fatal_shock import fatal_shock_summary
-
-    return fatal_shock_summary(ds)
-
-
-def info_lines(ds) -> list[str]:
-    from ..report.fatal_shock import fatal_shock_lines
-
-    return fatal_shock_lines(ds)
-
-
-
 # what each [analysis] key means (the scene-key reference)
 KEYS = {
     "solution": 'the solution to knock off, by name ("L1^1 R1-0^1")',
@@ -131,7 +116,8 @@ KEYS = {
 
 KINDS = (AnalysisKind(
     "fatal_shock", "minimal fatal shock: the smallest kick that sends a solution elsewhere",
-    read, plan, sections=sections, run=run, summary=summary, info_lines=info_lines,
+    read, plan, sections=sections, run=run, summary=fatal_shock_summary,
+    info_lines=fatal_shock_lines,
     info_catalogue=False, options=("workers",), progress_unit="phases",
     keys=KEYS,
     variables=("shock_destination",),

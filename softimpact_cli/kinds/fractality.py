@@ -18,8 +18,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from ..analysis.fractality import fractality
 from ..config.reader import ConfigError, positive
-from . import AnalysisKind, PlotOption, PlotSpec, Sections
+from ..report.fractality import fractality_lines, fractality_summary
+from ..sweep import sweep_in_memory
+from ..sweep.executors import make_executor
+from ..sweep.verification import verify_sweep
+from .base import AnalysisKind, PlotOption, PlotSpec, Sections
+from .sweeps import SweepAnalysis
+from .sweeps import plan as sweep_plan
+from .sweeps import sections as sweep_sections
 
 
 @dataclass(frozen=True)
@@ -56,8 +64,6 @@ def read(sec, ctx) -> FractalityAnalysis:
 
 
 def sections(analysis, ctx) -> Sections:
-    from .sweeps import sections as sweep_sections
-
     read_ = sweep_sections(analysis, ctx)
     ic = read_.initial_conditions
     if ic.kind != "plane":
@@ -75,17 +81,10 @@ def sections(analysis, ctx) -> Sections:
 
 def basins_scene(scene):
     """The basins sweep a fractality scene measures."""
-    from .sweeps import SweepAnalysis
-
     return replace(scene, analysis=SweepAnalysis("basins", scene.analysis.label_tol))
 
 
 def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
-    from ..analysis.fractality import fractality
-    from ..sweep import sweep_in_memory
-    from ..sweep.executors import make_executor
-    from ..sweep.verification import verify_sweep
-
     echo = echo or (lambda s: None)
     plane = basins_scene(scene)
     ds = sweep_in_memory(plane, workers, scheduler, None, echo, progress)
@@ -97,27 +96,13 @@ def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:
-    from .sweeps import plan as sweep_plan
-
     line = sweep_plan(basins_scene(scene), workers, chunk_size)
     return ("fractality: basin entropy, uncertainty exponent and Wada test of a basins "
             + line.removeprefix("basins: ").removeprefix("plan: "))
 
 
-def summary(ds) -> dict:
-    from ..report.fractality import fractality_summary
-
-    return fractality_summary(ds)
-
-
-def info_after(ds) -> list[str]:
-    from ..report.fractality import fractality_lines
-
-    return fractality_lines(ds)
-
-
 def report(ds) -> str:
-    return "\n".join(info_after(ds))
+    return "\n".join(fractality_lines(ds))
 
 
 
@@ -133,8 +118,8 @@ KEYS = {
 
 KINDS = (AnalysisKind(
     "fractality", "basin entropy, uncertainty exponent and Wada test of a plane",
-    read, plan, sections=sections, run=run, summary=summary, report=report,
-    info_after=info_after, info_catalogue=False, progress_unit="trajectories",
+    read, plan, sections=sections, run=run, summary=fractality_summary, report=report,
+    info_after=fractality_lines, info_catalogue=False, progress_unit="trajectories",
     variables=("label_share", "n_basins"),
     options=("workers", "scheduler", "echo"),
     keys=KEYS,

@@ -19,10 +19,11 @@ from typing import Any
 from ..config import key_docs
 from ..config.examples import EXAMPLES, example
 from ..config.reader import recording
-from ..config.scene import SECTIONS, parse_scene
+from ..config.scene import SECTIONS
 from ..systems import LAW_KEYS, MODELS, get_system
 from ..systems.base import SUPPORTED_BODIES
 from . import KINDS
+from .scene import parse_scene
 
 # Variants of the examples that reach the reader's other branches: (kind, old, new).
 VARIANTS = (

@@ -5,9 +5,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from ..analysis.engine import Problem
+from ..analysis.lyapunov_scans import (
+    Averaging,
+    catalogue_spectra,
+    parameter_spectra,
+    trajectory_spectrum,
+)
 from ..config.reader import ConfigError
+from ..config.scene import thin
 from ..config.sweep import read_catalogue, read_grid
-from . import AnalysisKind, PlotSpec, Sections, read_state, read_t0
+from ..report.lyapunov import format_lyapunov, lyapunov_summary
+from ..store.catalogues import scene_catalogue
+from .base import AnalysisKind, PlotSpec, Sections, read_state, read_t0
 
 STARTS = ("state", "catalogue")
 QUICK_PERIODS = 100  # --quick: at most this many averaged periods (and 20 transient)
@@ -88,8 +98,6 @@ def sections(analysis, ctx) -> Sections:
 
 
 def shrink(analysis, grid, axis: int):
-    from ..config.scene import thin
-
     seg = min(analysis.segments, 10)
     periods = max(seg, min(analysis.periods, QUICK_PERIODS) // seg * seg)
     out = replace(analysis, periods=periods, segments=seg,
@@ -102,25 +110,14 @@ def shrink(analysis, grid, axis: int):
 
 
 def _averaging(a):
-    from ..analysis.lyapunov_scans import Averaging
-
     return Averaging(a.periods, a.transient, a.segments, a.per_period, a.saltation)
 
 
 def run(scene, progress=None, **_):
-    from ..analysis.engine import Problem
-    from ..analysis.lyapunov_scans import (
-        catalogue_spectra,
-        parameter_spectra,
-        trajectory_spectrum,
-    )
-
     a = scene.analysis
     problem = Problem(scene.system, scene.values, scene.integrator)
     avg = _averaging(a)
     if a.start == "catalogue":
-        from ..analysis.catalogue import scene_catalogue
-
         cat = scene_catalogue(scene)
         tick = progress(len(cat.names)) if progress else None
         return catalogue_spectra(problem, cat, avg, tick)
@@ -143,19 +140,6 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"segments, {a.per_period} re-orthonormalisations per period{salt}")
 
 
-def summary(ds) -> dict:
-    from ..report.lyapunov import lyapunov_summary
-
-    return lyapunov_summary(ds)
-
-
-def report(ds) -> str:
-    from ..report.lyapunov import format_lyapunov
-
-    return format_lyapunov(ds)
-
-
-
 # what each [analysis] key means (the scene-key reference)
 KEYS = {
     "start": '"state" (from state) or "catalogue" (every catalogue solution, Floquet exponents '
@@ -173,10 +157,10 @@ KEYS = {
 
 KINDS = (AnalysisKind("lyapunov", "Lyapunov exponents (Benettin, saltation at switches) of "
                       "a trajectory, of catalogue solutions or along a parameter", read, plan,
-                      sections=sections, shrink=shrink, run=run, summary=summary,
-                      report=report, info_after=lambda ds: report(ds).splitlines(),
-                      keys=KEYS,
-                      progress_unit="spectra", variables=("exponent",),
+                      sections=sections, shrink=shrink, run=run, summary=lyapunov_summary,
+                      report=format_lyapunov,
+                      info_after=lambda ds: format_lyapunov(ds).splitlines(),
+                      progress_unit="spectra", variables=("exponent",), keys=KEYS,
                       plot=PlotSpec("Lyapunov exponents with their standard errors (against "
                                     "the parameter, beside the section states, for a grid "
                                     "run).")),)

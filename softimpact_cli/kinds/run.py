@@ -6,6 +6,8 @@ import time
 from typing import TYPE_CHECKING
 
 from ..config import Scene
+from ..store import provenance
+from ..sweep.verification import not_applicable
 from . import get as kind_of
 
 if TYPE_CHECKING:  # importing softimpact_cli imports this module: xarray only when run
@@ -20,8 +22,6 @@ def run_scene(scene: Scene, progress=None, **options) -> xr.Dataset:
     done (the CLI passes a tqdm bar); analyses never print. ``options`` (workers,
     scheduler, echo) go to the kinds that take them.
     """
-    from ..store import provenance
-
     kind = kind_of(scene.analysis.kind)
     if kind.sweep:
         raise ValueError(f"{kind.name} is a sweep kind: run it with sweep.run_sweep")
@@ -33,7 +33,6 @@ def run_scene(scene: Scene, progress=None, **options) -> xr.Dataset:
     if "parameters" in ds.attrs:  # a run that states its own parameter point (a design's
         del attrs["parameters"]   # pick) keeps it
     ds.attrs.update(attrs)
-    from ..sweep.verification import not_applicable
 
     # a kind that runs a sweep inside (fractality) keeps that sweep's verification
     ds.attrs.setdefault("verify_status", not_applicable(kind))

@@ -8,27 +8,49 @@ critical distances and found by sampling.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, replace
 
-from ..config.axes import catalogue_axes, every_axis, parameter_axes
+from ..analysis.maps import add_map_counts
+from ..config.axes import GRID_AXES, catalogue_axes, every_axis, parameter_axes
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
-from ..config.sweep import GRID_AXES, read_catalogue, read_grid, read_initial_conditions
-from . import AnalysisKind, PlotOption, PlotSpec, Sections
+from ..config.scene import thin
+from ..config.sweep import read_catalogue, read_grid, read_initial_conditions
+from ..report.compare import compare_sweeps, sweep_comparison_text
+from ..report.info import stability_summary as shares
+from ..report.info import sweep_summary
+from ..report.outcomes import label_counts
+from ..sweep.check import check_sweep
+from ..sweep.plan import Plan, SweepSettings, chunk_size_for
+from ..sweep.result import grid_dims
+from ..sweep.runner import prepare_catalogues
+from .base import AnalysisKind, PlotOption, PlotSpec, Sections
 
 
 @dataclass(frozen=True)
-class SweepAnalysis:
-    """[analysis] kind = "basins" | "stability" | "map": every initial condition of
+class SweepAnalysis(SweepSettings):
+    """[analysis] kind = "basins" | "stability": every initial condition of
     [initial_conditions] at every point of [grid], classified and labelled."""
 
-    kind: str
-    label_tol: float = 1e-3
+
+@dataclass(frozen=True)
+class MapAnalysis(SweepSettings):
+    """[analysis] kind = "map": a sweep, then the numbers of coexisting solutions at each
+    point, predicted (from d_crit: it needs attractors) and found."""
+
+    @property
+    def needs_attractors(self) -> bool:
+        return True
+
+    @property
+    def after_sweep(self):
+        return map_counts
 
 
-def _reader(kind: str):
-    def read(sec, ctx) -> SweepAnalysis:
-        return SweepAnalysis(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
+def _reader(kind: str, settings: type[SweepSettings] = SweepAnalysis):
+    def read(sec, ctx) -> SweepSettings:
+        return settings(kind=kind, label_tol=sec.number("label_tol", 1e-3, positive))
     return read
 
 
@@ -50,8 +72,6 @@ def sections(analysis, ctx) -> Sections:
 def shrink(analysis, grid, axis: int):
     """--quick: at most ``axis`` values per swept grid axis (endpoints kept; explicit
     panels stay)."""
-    from ..config.scene import thin
-
     if grid is not None and not grid.panels:
         grid = replace(grid, axes={a: thin(v, axis) if a in grid.swept else v
                                    for a, v in grid.axes.items()})
@@ -59,56 +79,21 @@ def shrink(analysis, grid, axis: int):
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:
-    import os
-
-    from ..sweep.plan import Plan, chunk_size_for
-
     size = chunk_size_for(scene, chunk_size, workers or os.cpu_count() or 1)
     return f"{scene.analysis.kind}: " + Plan(scene, size).describe()
 
 
 def check(scene, sample, seed, result=None) -> dict:
-    from .check import check_sweep
-
     return check_sweep(scene, sample, seed, result)
 
 
-def summary(ds) -> dict:
-    from ..report.info import sweep_summary
-
-    return sweep_summary(ds)
-
-
 def stability_summary(ds) -> dict:
-    from ..report.info import stability_summary as shares
-
-    return {**summary(ds), "stability": shares(ds)}
-
-
-def outcome_counts(ds):
-    from ..report.outcomes import label_counts
-
-    return label_counts(ds)
-
-
-def compare(a, b, name_a: str, name_b: str) -> dict:
-    from ..report.compare import compare_sweeps
-
-    return compare_sweeps(a, b, name_a, name_b)
-
-
-def compare_text(report: dict, max_points: int) -> list[str]:
-    from ..report.compare import sweep_comparison_text
-
-    return sweep_comparison_text(report, max_points)
+    return {**sweep_summary(ds), "stability": shares(ds)}
 
 
 def map_counts(ds, scene, catalogue):
     """The map's predicted and found numbers of coexisting solutions at each point (with
     each point's own attractors when the grid sweeps body parameters)."""
-    from ..analysis.maps import add_map_counts
-    from ..sweep.runner import prepare_catalogues
-
     body = [a for a in scene.grid.parameters if a in catalogue_axes(scene.system)]
     lefts = None
     if body:  # the searches come back from the catalogue cache
@@ -116,7 +101,7 @@ def map_counts(ds, scene, catalogue):
         lefts = {tuple((a, v) for a, v in zip(axes, key, strict=True) if a in body):
                  list(cat.attractors) for key, cat in prepare_catalogues(scene)[0].items()}
     return add_map_counts(ds, scene.system, dict(scene.values), list(catalogue.attractors),
-                          lefts)
+                          grid_dims(ds), lefts)
 
 
 SHOW_ERROR = PlotOption("--show-error", "show_error", "Print the result's measured label "
@@ -157,17 +142,16 @@ KEYS = {
 }
 
 KINDS = tuple(
-    AnalysisKind(name, description, _reader(name), plan, sections=sections, shrink=shrink,
-                 check=check, summary=summarise, after_sweep=after,
-                 outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
-                 needs_attractors=name == "map",  # its counts need d_crit
-                 keys=KEYS,
+    AnalysisKind(name, description, _reader(name, settings), plan, sections=sections,
+                 shrink=shrink, check=check, summary=summarise,
+                 outcome_counts=label_counts, compare=compare_sweeps,
+                 compare_text=sweep_comparison_text, keys=KEYS,
                  progress_unit="trajectories", plot=PLOTS[name], variables=SWEEP_VARIABLES)
-    for name, description, summarise, after in (
-        ("basins", "the label of every start on a plane, at every [grid] point", summary,
-         None),
+    for name, description, summarise, settings in (
+        ("basins", "the label of every start on a plane, at every [grid] point", sweep_summary,
+         SweepAnalysis),
         ("stability", "basin stability: shares of random starts, 95% Wilson intervals",
-         stability_summary, None),
-        ("map", "coexisting solutions over two parameters, predicted and found", summary,
-         map_counts),
+         stability_summary, SweepAnalysis),
+        ("map", "coexisting solutions over two parameters, predicted and found", sweep_summary,
+         MapAnalysis),
     ))

@@ -11,25 +11,34 @@ t = 0 mod T labelled at the second point).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+import xarray as xr
 
 from ..analysis.attributes import attribute_list
+from ..analysis.tipping import attractor_destinations, tipping_probabilities
 from ..config.reader import ConfigError
-from . import AnalysisKind, PlotOption, PlotSpec, Sections
-from .sweeps import (
-    KEYS,
-    SHOW_ERROR,
-    SWEEP_VARIABLES,
-    _reader,
-    check,
-    compare,
-    compare_text,
-    outcome_counts,
-    plan,
-    shrink,
-)
+from ..report.compare import compare_sweeps, sweep_comparison_text
+from ..report.info import sweep_summary
+from ..report.outcomes import label_counts
+from ..report.tipping import tipping_lines, tipping_summary
+from ..sweep import label_states
+from ..sweep.plan import SweepSettings
+from ..sweep.result import grid_dims
+from .base import AnalysisKind, PlotOption, PlotSpec, Sections
+from .sweeps import KEYS, SHOW_ERROR, SWEEP_VARIABLES, _reader, check, plan, shrink
 from .sweeps import sections as sweep_sections
-from .sweeps import summary as sweep_summary
+
+
+@dataclass(frozen=True)
+class TippingAnalysis(SweepSettings):
+    """[analysis] kind = "tipping": a sweep over two grid points, then the tipping matrix
+    and where each solution goes (``add_tipping``)."""
+
+    @property
+    def after_sweep(self):
+        return add_tipping
 
 
 def sections(analysis, ctx) -> Sections:
@@ -43,12 +52,6 @@ def sections(analysis, ctx) -> Sections:
 
 def add_tipping(ds, scene, catalogue):
     """The sweep's extra variables: the tipping matrix and the solutions' destinations."""
-    import xarray as xr
-
-    from ..analysis.tipping import attractor_destinations, tipping_probabilities
-    from ..report.info import grid_dims
-    from ..sweep import label_states
-
     dims = grid_dims(ds)
     ic_dims = attribute_list(ds.attrs, "ic_dims")
     label = ds["label"].transpose(*dims, *ic_dims).values.reshape(2, -1)
@@ -83,22 +86,15 @@ def _point_text(scene, index: int) -> str:
 
 
 def summary(ds) -> dict:
-    from ..report.tipping import tipping_summary
-
     return {**sweep_summary(ds), "tipping": tipping_summary(ds)}
-
-
-def info_after(ds) -> list[str]:
-    from ..report.tipping import tipping_lines
-
-    return tipping_lines(ds)
 
 
 KINDS = (AnalysisKind(
     "tipping", "tipping probabilities: where basins and solutions go between two points",
-    _reader("tipping"), plan, sections=sections, shrink=shrink, check=check,
-    summary=summary, after_sweep=add_tipping, info_after=info_after,
-    outcome_counts=outcome_counts, compare=compare, compare_text=compare_text,
+    _reader("tipping", TippingAnalysis), plan, sections=sections, shrink=shrink, check=check,
+    summary=summary, info_after=tipping_lines,
+    outcome_counts=label_counts, compare=compare_sweeps,
+    compare_text=sweep_comparison_text,
     variables=(*SWEEP_VARIABLES, "tip_probability"),
     progress_unit="trajectories",
     keys=KEYS,

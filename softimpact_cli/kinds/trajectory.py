@@ -4,10 +4,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..analysis.engine import Problem
+from ..analysis.trajectory import trajectory_dataset
 from ..config.limits import MAX_TRAJECTORY_SAMPLES
 from ..config.reader import ConfigError
 from ..config.space import OVERHEAD_BYTES, size_text
-from . import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
+from .base import AnalysisKind, PlotOption, PlotSpec, read_state, read_t0
 
 
 @dataclass(frozen=True)
@@ -58,9 +60,6 @@ def read(sec, ctx) -> TrajectoryAnalysis:
 
 
 def run(scene, progress=None, **_):
-    from ..analysis.engine import Problem
-    from ..analysis.trajectory import trajectory_dataset
-
     a = scene.analysis
     return trajectory_dataset(Problem(scene.system, scene.values, scene.integrator), a.state,
                               a.t0, a.periods, a.samples_per_period)

@@ -9,8 +9,8 @@ import numpy as np
 from ..analysis.attributes import attribute_list
 from ..analysis.labels import NONPERIODIC_KINDS, parse_label
 from ..config.axes import COUPLING_AXES
-from ..report.info import grid_axes, grid_dims, grid_point
-from . import (
+from ..sweep.result import grid_axes, grid_dims, grid_point
+from .common import (
     PARAMETER_TEX,
     is_figure,
     multiple_text,

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.labels import latex_of
-from . import (
+from .common import (
     PARAMETER_TEX,
     panel_letter,
     parameter_text,

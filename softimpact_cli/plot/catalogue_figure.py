@@ -8,7 +8,7 @@ import numpy as np
 
 from ..analysis.labels import latex_of
 from ..config.axes import COUPLING_AXES
-from . import (
+from .common import (
     is_figure,
     new_figure,
     panel_letter,

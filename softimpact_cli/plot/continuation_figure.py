@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.labels import latex_of
-from . import PARAMETER_TEX, parameter_text, place_panels, root_figure
+from .common import PARAMETER_TEX, parameter_text, place_panels, root_figure
 from .palette import colour_of, solution_order
 
 LABEL_FONT = 8  # points: the event labels (LP, NS, ...)

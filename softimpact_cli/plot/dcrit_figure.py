@@ -9,7 +9,7 @@ import numpy as np
 
 from ..analysis.labels import latex_of
 from ..config.axes import COUPLING_AXES
-from . import panel_letter, parameter_text, phase_text, pi_ticks, place_panels, root_figure
+from .common import panel_letter, parameter_text, phase_text, pi_ticks, place_panels, root_figure
 from .palette import colour_of, solution_order
 
 

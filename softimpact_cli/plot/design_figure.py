@@ -10,7 +10,7 @@ import numpy as np
 from ..analysis.labels import latex_of
 from ..config.axes import COUPLING_AXES
 from ..report.info import design_summary
-from . import (
+from .common import (
     panel_letter,
     parameter_text,
     phase_text,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import place_panels
+from .common import place_panels
 
 
 def draw_fatal_shock(ds, ax=None):

@@ -8,8 +8,8 @@ import math
 import numpy as np
 
 from ..analysis.attributes import attribute_list
-from . import place_panels
 from .basins_figure import AXIS_SYMBOLS
+from .common import place_panels
 
 WHERE = (("d", "d"), ("phi", r"\varphi"), ("k_c", "k_c"), ("c_c", "c_c"))
 

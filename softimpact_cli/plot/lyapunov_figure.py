@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import PARAMETER_TEX, parameter_text, place_panels, root_figure
+from .common import PARAMETER_TEX, parameter_text, place_panels, root_figure
 
 COLOURS = ("tab:red", "tab:blue", "tab:green", "tab:purple")
 

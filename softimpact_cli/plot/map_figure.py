@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.attributes import attribute_list
-from ..report.info import GRID_AXES
-from . import panel_letter, parameter_text, pi_ticks, place_panels, root_figure, start_text
+from ..config import GRID_AXES
 from .basins_figure import SYMBOLS
+from .common import panel_letter, parameter_text, pi_ticks, place_panels, root_figure, start_text
 
 # what a panel means when it is zero everywhere (drawn as words, not a blank square)
 ALL_ZERO = ("no coexisting non-impacting solution in this range",

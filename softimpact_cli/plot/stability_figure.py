@@ -7,9 +7,9 @@ import numpy as np
 
 from ..analysis.attributes import attribute_list
 from ..analysis.labels import latex_of, parse_label
-from ..report.info import grid_dims
-from . import parameter_text, pi_ticks, place_panels, root_figure, start_text
+from ..sweep.result import grid_dims
 from .basins_figure import SYMBOLS
+from .common import parameter_text, pi_ticks, place_panels, root_figure, start_text
 from .palette import IMPACTING, colour_of, solution_order
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import place_panels
 from .basins_figure import draw_basins
+from .common import place_panels
 
 
 def draw_tipping(ds, no_basins: bool = False, ax=None):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import panel_letter, parameter_text, place_panels, root_figure, start_text
+from .common import panel_letter, parameter_text, place_panels, root_figure, start_text
 
 BODY_COLOURS = ("#1f77b4", "#d62728")
 

@@ -10,33 +10,34 @@ it passes.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import Any
+
 import numpy as np
 
 from ..analysis.attributes import attribute_list
+from ..analysis.stability import wilson_interval
 from ..config import ConfigError
 from ..config.axes import every_axis
-from .info import grid_axes, grid_dims, grid_point
+from ..sweep.result import grid_axes, grid_dims, grid_point
 
 
-def comparable() -> tuple[str, ...]:
-    """The kinds compare takes (those the registry gives a ``compare``)."""
-    from ..kinds import KINDS
-
-    return tuple(name for name, kind in KINDS.items() if kind.compare is not None)
+def comparable(kinds: Mapping[str, Any]) -> tuple[str, ...]:
+    """The kinds of ``kinds`` (the registry) that compare takes: those with a ``compare``."""
+    return tuple(name for name, kind in kinds.items() if kind.compare is not None)
 
 
-def compare_results(a, b, name_a: str = "A", name_b: str = "B") -> dict:
-    """The differences of result ``b`` from result ``a`` (xarray Datasets).
+def compare_results(a, b, name_a: str, name_b: str, kinds: Mapping[str, Any]) -> dict:
+    """The differences of result ``b`` from result ``a`` (xarray Datasets), by the
+    ``compare`` of their kind in ``kinds`` (the registry: ``kinds.results`` passes it).
 
     ConfigError (one line) when the two cannot be compared: another analysis kind, a
     kind compare does not take, or another grid, phase set or set of initial conditions.
     """
-    from ..kinds import KINDS
-
     kind_a, kind_b = a.attrs.get("analysis"), b.attrs.get("analysis")
-    if kind_a not in comparable():
+    if kind_a not in comparable(kinds):
         raise ConfigError(f"{name_a}: holds a {kind_a} result; compare takes "
-                          f"{', '.join(comparable())} results")
+                          f"{', '.join(comparable(kinds))} results")
     if kind_b != kind_a:
         raise ConfigError(f"{name_b}: holds a {kind_b} result, {name_a} a {kind_a} result; "
                           "compare needs two results of the same kind")
@@ -44,7 +45,7 @@ def compare_results(a, b, name_a: str = "A", name_b: str = "B") -> dict:
         if int(ds.attrs.get("complete", 1)) != 1:
             raise ConfigError(f"{name}: is incomplete; finish it with --resume first")
     report = {"analysis": kind_a, "a": name_a, "b": name_b}
-    report.update(KINDS[kind_a].compare(a, b, name_a, name_b))
+    report.update(kinds[kind_a].compare(a, b, name_a, name_b))
     return report
 
 
@@ -71,8 +72,6 @@ def _names(ds, dims: list[str]) -> np.ndarray:
 
 def compare_sweeps(a, b, name_a: str, name_b: str) -> dict:
     """Label agreement point by point and share differences per solution and grid point."""
-    from ..analysis.stability import wilson_interval
-
     _same(list(grid_dims(a)), list(grid_dims(b)), "grid layout", name_a, name_b)
     for axis in grid_axes(a):
         _same(a[axis].values, b[axis].values, f"grid axis {axis}", name_a, name_b)
@@ -187,12 +186,10 @@ def limits_exceeded(report: dict, max_label_change: float | None = None,
     return why
 
 
-def format_comparison(report: dict, max_points: int = 20) -> str:
-    """The report as plain text."""
-    from ..kinds import KINDS
-
+def format_comparison(report: dict, compare_text, max_points: int = 20) -> str:
+    """The report as plain text; ``compare_text(report, max_points)``: its kind's lines."""
     head = f"{report['analysis']}: {report['b']} against {report['a']}"
-    return "\n".join([head, *KINDS[report["analysis"]].compare_text(report, max_points)])
+    return "\n".join([head, *compare_text(report, max_points)])
 
 
 def sweep_comparison_text(report: dict, max_points: int) -> list[str]:

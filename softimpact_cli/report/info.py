@@ -8,7 +8,9 @@ import numpy as np
 
 from ..analysis.attributes import attribute_list
 from ..analysis.catalogue import search_shares
-from ..config.axes import COUPLING_AXES, GRID_AXES
+from ..analysis.stability import basin_stability
+from ..config.axes import COUPLING_AXES
+from ..kernels import method_traits
 from ..kernels.codes import (
     BASE_WIDTH,
     CLASSIFIED_BY,
@@ -16,7 +18,8 @@ from ..kernels.codes import (
     STATUS_TABLE,
     UNRESOLVED_LABEL,
 )
-from ..kinds import KINDS
+from ..sweep.result import grid_axes, grid_dims, grid_point  # noqa: F401  (named here too)
+from .nonperiodic import nonperiodic_summary
 from .verification import verification_summary
 
 SUMMARY_KEYS = (
@@ -42,12 +45,13 @@ def _plain(value):
 
 def _first_method(ds) -> str:
     """What the steps that are not Rodas4's are: the explicit pair's, or the exact flow's."""
-    exact = ds.attrs.get("integrator_resolved_method") == "exact"
+    exact = method_traits(str(ds.attrs.get("integrator_resolved_method", ""))).closed_form
     return "exact flow" if exact else "explicit"
 
 
-def describe(ds) -> dict:
-    """Summary of a result dataset: analysis, outcome, timings, provenance."""
+def describe(ds, kind=None) -> dict:
+    """Summary of a result dataset: analysis, outcome, timings, provenance, and the part
+    of ``kind`` (its AnalysisKind: ``kinds.results.describe`` passes the result's own)."""
     out = {k: _plain(ds.attrs[k]) for k in SUMMARY_KEYS if k in ds.attrs}
     out.update({k: _plain(v) for k, v in ds.attrs.items() if k.startswith("check_")})
     first = _first_method(ds)
@@ -70,11 +74,9 @@ def describe(ds) -> dict:
             for i, name in enumerate(ds["branch_name"].values)}
     if "d_crit" in ds:
         out["d_crit"] = dcrit_summary(ds)
-    kind = KINDS.get(str(ds.attrs.get("analysis")))
     if kind is not None and kind.summary is not None:
         out.update(kind.summary(ds))
     if "nonperiodic_code" in ds:  # the second stage's attractors (report/nonperiodic.py)
-        from .nonperiodic import nonperiodic_summary
 
         out["nonperiodic"] = nonperiodic_summary(ds)
     verification = verification_summary(ds.attrs)
@@ -142,32 +144,6 @@ def format_catalogue(ds) -> str:
         names = summary["combinations"]
         lines.append(f"combinations ({len(names)}): " + ", ".join(names))
     return "\n".join(lines)
-
-
-def grid_dims(ds) -> tuple[str, ...]:
-    """The dims a sweep's grid points span: its swept model parameters and GRID_AXES, or
-    ("panel",); without those a selection took away (``ds.sel(d=10)`` keeps d as a
-    scalar coordinate)."""
-    dims = attribute_list(ds.attrs, "grid_dims", GRID_AXES)
-    return tuple(d for d in dims if d in ds.dims or d not in ds.coords)
-
-
-def grid_axes(ds) -> tuple[str, ...]:
-    """Every axis with a value at each grid point: the model parameters the sweep spans
-    besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES."""
-    return tuple(attribute_list(ds.attrs, "grid_parameters")) + GRID_AXES
-
-
-def grid_point(ds, index: tuple[int, ...]) -> dict:
-    """Parameter values of the grid point at ``index`` (over grid_dims); t0 is "random"
-    when each sample has its own start time."""
-    dims = grid_dims(ds)
-    sel = dict(zip(dims, index, strict=True))
-    point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
-             for a in grid_axes(ds)}
-    if ds.attrs.get("t0_mode") == "random":
-        point["t0"] = "random"
-    return point
 
 
 def sweep_summary(ds) -> dict:
@@ -248,8 +224,6 @@ def incomplete_summary(header, done: int) -> dict:
 
 def stability_summary(ds) -> list[dict]:
     """Per grid point: share and 95% Wilson interval of every group."""
-    from ..analysis.stability import basin_stability
-
     bs = basin_stability(ds)
     dims = grid_dims(ds)
     share = bs["share"].transpose(*dims, "group").values

@@ -10,6 +10,8 @@ import numpy as np
 
 from ..analysis.attributes import attribute_list
 from ..config.axes import COUPLING_AXES, every_axis
+from .info import format_catalogue
+from .nonperiodic import nonperiodic_lines
 from .verification import verification_lines
 
 # parameters a kind varies or does not use, left out of its "parameters" line
@@ -70,13 +72,10 @@ def _where(point: dict) -> str:
     return ", ".join(f"{a}={text(point[a])}" for a in every_axis() if a in point)
 
 
-def format_summary(summary: dict, ds, max_points: int = 50) -> str:
-    """The whole ``info`` text of a result (``summary`` from ``describe``)."""
-    from ..kinds import KINDS
-    from .info import format_catalogue
-
+def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:
+    """The whole ``info`` text of a result (``summary`` from ``describe``); ``kind``: its
+    AnalysisKind (its own lines; ``kinds.results.format_summary`` passes it)."""
     kind_name = summary.get("analysis")
-    kind = KINDS.get(str(kind_name))
     lines = []
     if "progress" in summary:  # an unfinished sweep
         p = summary["progress"]
@@ -114,8 +113,6 @@ def format_summary(summary: dict, ds, max_points: int = 50) -> str:
     if "d_crit" in summary:
         lines += _dcrit_table(summary["d_crit"])
     if "nonperiodic" in summary:
-        from .nonperiodic import nonperiodic_lines
-
         lines += nonperiodic_lines(summary["nonperiodic"])
     lines += verification_lines(ds.attrs)  # the label error, next to the shares
     if "stability" in summary:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .info import grid_dims, grid_point
+from ..sweep.result import grid_dims, grid_point
 
 
 def nonperiodic_summary(ds) -> list[dict]:

@@ -12,18 +12,9 @@ import numpy as np
 import xarray as xr
 
 from ..kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
-from ..kinds import KINDS
 
 THRESHOLD = 0.05  # a share of unresolved (or diverged) trajectories worth a warning
 STRICT_STATUS = 3  # exit status of --strict when a warning applies (result written)
-
-
-def _shares(ds: xr.Dataset) -> tuple[int, int, int] | None:
-    """(trajectories, unresolved, diverged) of the result, or None if it has none."""
-    kind = KINDS.get(str(ds.attrs.get("analysis")))
-    if kind is None or kind.outcome_counts is None:
-        return None
-    return kind.outcome_counts(ds)
 
 
 def label_counts(ds: xr.Dataset) -> tuple[int, int, int] | None:
@@ -97,11 +88,15 @@ def outcome_notes(ds: xr.Dataset) -> list[str]:
 
 
 def outcome_warnings(ds: xr.Dataset, max_periods: int, threshold: float = THRESHOLD,
+                     shares: tuple[int, int, int] | None = None,
                      section_periods: int = 0) -> list[str]:
     """Sentences (no prefix) about unresolved or diverged shares above ``threshold`` and
-    about an empty catalogue; empty when the result looks sound. ``section_periods``: the
-    second stage's budget after ``max_periods`` (0: off). An empty catalogue beside
-    attractors that are not periodic is no fault (:func:`outcome_notes` says it)."""
+    about an empty catalogue; empty when the result looks sound. ``shares``: the result's
+    (trajectories, unresolved, diverged) as its kind counts them (``outcome_counts``;
+    ``kinds.results.outcome_warnings`` passes them), None where it has none.
+    ``section_periods``: the second stage's budget after ``max_periods`` (0: off). An
+    empty catalogue beside attractors that are not periodic is no fault
+    (:func:`outcome_notes` says it)."""
     out = []
     if _empty_catalogue(ds) and not nonperiodic_attractors(ds):
         n, counts = catalogue_search(ds)
@@ -109,7 +104,6 @@ def outcome_warnings(ds: xr.Dataset, max_periods: int, threshold: float = THRESH
         out.append(f"the catalogue found no solution among {n} initial conditions"
                    + (f" ({listed})" if listed else "")
                    + f"; raise [integrator] max_periods (now {max_periods}) or check the scene")
-    shares = _shares(ds)
     if shares is None or shares[0] == 0:
         return out
     n, unresolved, diverged = shares

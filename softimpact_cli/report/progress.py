@@ -20,6 +20,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..kernels.codes import DIVERGED_LABEL, PENDING, UNRESOLVED_LABEL
+from ..sweep.interrupt import received
 
 INTERVAL_ENV = "SOFTIMPACT_PROGRESS_INTERVAL"
 DEFAULT_INTERVAL_S = 30.0
@@ -110,8 +111,6 @@ class ProgressLines:
         return ", ".join(parts)
 
     def _run(self) -> None:
-        from ..sweep.interrupt import received
-
         # an interrupted run is being cleaned up: its last line would only repeat itself
         while not self._stop.wait(self.interval) and received() is None:
             self._write(self.line())

@@ -7,6 +7,8 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
+from ..sweep.pilot import pilot_trial_text
+
 NUMBERS = ("sample", "total", "disagreements", "share", "ci95_low", "ci95_high",
            "threshold", "rungs", "check_wall_s", "wall_s", "seed")
 
@@ -42,13 +44,6 @@ def pilot_summary(attrs: Mapping[str, Any]) -> dict:
     if "pilot_trials" in attrs:
         out["trials"] = json.loads(str(attrs["pilot_trials"]))
     return out
-
-
-def pilot_trial_text(trial: Mapping[str, Any], sample: int) -> str:
-    """How one candidate of the pilot did, e.g. ``0 of 400 disagree (1.2 s)``."""
-    if trial["names_differ"]:
-        return "its attractor search found other attractors"
-    return f"{trial['disagreements']} of {sample} disagree ({trial['wall_s']:.1f} s)"
 
 
 def pilot_line(attrs: Mapping[str, Any]) -> str | None:

@@ -6,12 +6,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import config  # noqa: F401  (config before info: the kinds registry imports it)
 from ..analysis.attributes import attribute_list
 from ..analysis.labels import parse_label
 from ..analysis.stability import basin_stability, wilson_interval
 from ..config.axes import COUPLING_AXES
-from ..report.info import grid_dims, sweep_summary
+from ..report.info import sweep_summary
+from ..sweep.result import grid_dims
 
 
 def is_solution(name: str) -> bool:

@@ -6,8 +6,9 @@ import datetime as _dt
 import traceback
 from pathlib import Path
 
+from .. import __version__
 from .checks import CHECKS
-from .runs import CACHE, QUICK_PLANE, QUICK_SAMPLES, ROOT, RUNS, MissingRun, execute
+from .runs import CACHE, QUICK_PLANE, QUICK_SAMPLES, ROOT, RUNS, MissingRun, cache_path, execute
 from .statements import load, select
 from .table import write_table
 from .verdicts import NOT_CHECKED, NOT_COMPUTABLE, verdict
@@ -96,8 +97,6 @@ def reproduce(quick: bool = False, only: str | None = None, workers: int | None 
 
 
 def _header(quick: bool, only: str | None, cached_only: bool) -> str:
-    from .. import __version__
-
     now = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     size = (f"**QUICK run (reduced sizes): basin planes at most {QUICK_PLANE} x "
             f"{QUICK_PLANE}, at most {QUICK_SAMPLES} random samples per point (grids, "
@@ -127,8 +126,6 @@ def _header(quick: bool, only: str | None, cached_only: bool) -> str:
 
 
 def _runs_section(used: list[str], quick: bool, cache: Path) -> str:
-    from .runs import cache_path
-
     lines = ["", "## Runs", "", "| run | what | command | result file |",
              "| --- | --- | --- | --- |"]
     for name in used:

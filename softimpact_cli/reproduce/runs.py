@@ -16,7 +16,12 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..config import Scene, parse_scene, quick
+from ..config import Scene
+from ..kinds import get as kind_of
+from ..kinds.run import run_scene
+from ..kinds.scene import parse_scene, quick
+from ..store import open_result, write_result
+from ..sweep import run_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs"
@@ -83,8 +88,6 @@ class Run:
         """The scene; ``quick_run`` shrinks the sweeps (basins, stability) only: the
         catalogues, critical distances and bifurcation diagrams take seconds at full size,
         and their statements name phases and steps a thinned grid would miss."""
-        from ..kinds import get as kind_of
-
         scene = parse_scene(self.text(), f"{self.name} ({self.scene_file})")
         if quick_run and kind_of(scene.analysis.kind).sweep:
             return quick(scene, plane=QUICK_PLANE, samples=QUICK_SAMPLES, axis=None)
@@ -108,8 +111,6 @@ def _complete(path: Path) -> bool:
     if not path.is_file():
         return False
     try:
-        from ..store import open_result
-
         with open_result(path) as ds:
             return int(ds.attrs.get("complete", 1)) == 1 and "scene_text" in ds.attrs
     except Exception:  # noqa: BLE001 - an unreadable cache file is redone
@@ -130,9 +131,6 @@ def execute(run: Run, quick_run: bool = False, workers: int | None = None,
     """The run's result: read from the cache when a complete run of the same scene text is
     there, else computed (a sweep resumes its chunk files) and cached; with
     ``cached_only`` a run not in the cache raises MissingRun."""
-    from ..kinds import get as kind_of
-    from ..store import open_result, write_result
-
     scene = run.scene(quick_run)
     path = cache_path(scene, run.name, cache)
     if _complete(path):
@@ -143,13 +141,10 @@ def execute(run: Run, quick_run: bool = False, workers: int | None = None,
     cache.mkdir(parents=True, exist_ok=True)
     echo(f"{run.name}: running {run.command()}{' (quick)' if quick_run else ''} -> {path}")
     if kind_of(scene.analysis.kind).sweep:
-        from ..sweep import run_sweep
-
         resume = path.exists() or path.with_name(path.name + ".parts").exists()
         ds = run_sweep(scene, path, workers=workers, resume=resume, overwrite=not resume,
                        echo=echo)
         return ds.load()
-    from ..kinds.run import run_scene
 
     ds = run_scene(scene, workers=workers)
     write_result(ds, path)

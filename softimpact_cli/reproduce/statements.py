@@ -6,6 +6,8 @@ import re
 import tomllib
 from importlib import resources
 
+from .checks import CHECKS
+
 RULES = ("value", "count", "names", "share", "holds", "none")
 ID = re.compile(r"^S([1-9][0-9]*)$")
 
@@ -15,7 +17,6 @@ def load(text: str | None = None) -> list[dict]:
     if text is None:
         text = resources.files(__package__).joinpath("statements.toml").read_text()
     entries = tomllib.loads(text).get("statement", [])
-    from .checks import CHECKS
 
     seen = set()
     for e in entries:

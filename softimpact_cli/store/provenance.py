@@ -13,6 +13,7 @@ import numba
 import numpy as np
 
 from .. import __version__
+from ..config import forcing_period
 
 
 def command_line() -> str:
@@ -82,5 +83,5 @@ def _start_time(scene) -> dict:
     t0 = getattr(scene.analysis, "t0", None)
     if t0 is None:
         return {}
-    period = 2 * np.pi / float(scene.values["w"])
+    period = forcing_period(scene.values)
     return {"t0": float(t0), "t0_over_T": float(t0) / period, "t0_mode": "fixed"}

@@ -20,11 +20,11 @@ from ..analysis.catalogue import (
     catalogue_dataset,
     catalogue_states,
     extend_catalogue,
-    scene_body_attractors,
 )
 from ..analysis.design import AXES, NoRegion, design
-from ..config import ConfigError, Grid, Scene
+from ..config import ConfigError, Grid, Scene, forcing_period
 from ..config.axes import catalogue_key
+from ..store.catalogues import scene_body_attractors
 from ..store.provenance import provenance
 from .chunks import CELL_BLOCK
 from .executors import make_executor
@@ -68,7 +68,7 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
     executor = make_executor(workers, scheduler)
     echo(f"executor: {executor.describe()}")
     ic = scene.initial_conditions
-    t0_per_sample = ic.random_t0(2 * np.pi / float(scene.values["w"])) if ic.t0 is None \
+    t0_per_sample = ic.random_t0(forcing_period(scene.values)) if ic.t0 is None \
         else None
     catalogues: dict[float, Catalogue] = {}
 
@@ -116,7 +116,7 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
                      "parameters": ", ".join(f"{k}={v}" for k, v in chosen.items()),
                      "t0_mode": "random" if ic.t0 is None else "fixed",
                      "t0": float(ic.t0) if ic.t0 is not None else -1.0,
-                     "forcing_period": 2 * np.pi / float(scene.values["w"]),
+                     "forcing_period": forcing_period(scene.values),
                      "sample_box": ", ".join(f"{k}=[{lo:g}, {hi:g}]"
                                              for k, (lo, hi) in ic.box.items()),
                      "sample_seed": ic.seed, "catalogue_source": search.source})

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 import xarray as xr
@@ -21,7 +22,7 @@ from ..config.sweep import Grid, InitialConditions
 from ..store.provenance import history_line, provenance
 from .chunks import RESULT_FIELDS
 from .executors import make_executor
-from .plan import Plan, chunk_size_for
+from .plan import Plan, SweepSettings, chunk_size_for
 from .runner import keep_first_orbits, labelled_dataset, prepare_inputs
 from .second_stage import progress_codes, unpack
 
@@ -74,16 +75,12 @@ def label_states(scene: Scene, point: dict, states: np.ndarray, t0: float = 0.0,
     ``point`` ({axis: value} over d, phi, k_c, c_c; the scene's values elsewhere) of
     ``scene``'s system, with its integrator and [catalogue] settings: a basins sweep
     over that list of states (any kind's scene will do)."""
-    from dataclasses import replace
-
-    from ..kinds.sweeps import SweepAnalysis
-
     values = {**scene.values, **point, "t0": float(t0)}
     grid = Grid({a: (float(values.get(a, 0.0)),) for a in GRID_AXES}, ())
     ic = InitialConditions(kind="list", state_names=tuple(scene.system.state_names),
                            states=tuple(map(tuple, np.asarray(states, float).tolist())),
                            t0=float(t0))
-    analysis = SweepAnalysis("basins", getattr(scene.analysis, "label_tol", 1e-3))
+    analysis = SweepSettings("basins", getattr(scene.analysis, "label_tol", 1e-3))
     ds = sweep_in_memory(replace(scene, grid=grid, initial_conditions=ic,
                                  analysis=analysis), workers=workers)
     table = {int(c): str(n) for c, n in zip(ds["label_code"].values,

@@ -159,6 +159,8 @@ def sweep_kept(out: Path, scene: str, flags: tuple[str, ...] = (),
     ``flags``: the options that change the scene (``--quick``, ``--resolution N``), which
     the resume must repeat; ``before``: ``modified(out)`` when the run started.
     """
+    # deferred: every command's signal handling imports this module, and the store
+    # imports xarray (0.8 s); only an interrupted sweep needs it
     from ..store.sweep_store import SweepStore
 
     store = SweepStore(out)

@@ -7,7 +7,7 @@ smooth Duffing plane labels every point the same at rtol 1e-5, about six times f
 a sweep of at least ``MIN_TOTAL_RATIO`` x ``pilot_sample`` trajectories first reruns
 ``pilot_sample`` random trajectories (disjoint from the verification sample, so that
 the verification stays an unbiased measure of the chosen setting) at
-``kinds.check.tightened`` settings, then at each candidate rtol of ``CANDIDATES``
+``sweep.check.tightened`` settings, then at each candidate rtol of ``CANDIDATES``
 looser than the scene's, loosest first (atol scaled with it, capture and cells as the
 scene has them). The sweep runs at the first candidate that
 
@@ -31,12 +31,15 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import asdict, dataclass, replace
+from typing import Any
 
 import numpy as np
 
 from ..config import IntegratorSettings, Scene
+from .check import rerun_labels, rerun_named, sample_indices, tightened
+from .runner import prepare_catalogues
 
 CANDIDATES = (1e-5, 1e-6, 1e-7)  # rtol, loosest first; only those looser than the scene's
 MIN_TOTAL_RATIO = 50  # pilot only sweeps of at least this many times pilot_sample
@@ -71,10 +74,10 @@ def skip_reason(scene: Scene, total: int) -> str | None:
     by_hand = [k for k in ("rtol", "atol") if k in scene.sections.get("integrator", {})]
     if by_hand:
         return f"[integrator] {' and '.join(by_hand)} set by hand"
-    if scene.integrator.resolved_method == "rk4":
-        return "fixed-step rk4 has no tolerance"
-    if scene.integrator.resolved_method == "exact":
-        return "the exact flow has no tolerance"
+    traits = scene.integrator.traits
+    if not traits.tolerance:
+        return (f"fixed-step {scene.integrator.resolved_method} has no tolerance"
+                if traits.fixed_step else "the exact flow has no tolerance")
     if not [r for r in CANDIDATES if r > scene.integrator.rtol]:
         return f"no candidate looser than rtol {scene.integrator.rtol:g}"
     if total < MIN_TOTAL_RATIO * settings.pilot_sample:
@@ -86,8 +89,6 @@ def skip_reason(scene: Scene, total: int) -> str | None:
 def pilot_indices(total: int, pilot: int, verification: int, seed: int) -> np.ndarray:
     """``pilot`` flat indices drawn with ``seed + 1`` from those the verification (its
     ``verification`` indices drawn with ``seed``) does not rerun, sorted."""
-    from ..kinds.check import sample_indices
-
     taken = sample_indices(total, verification, seed)
     free = np.setdiff1d(np.arange(total), taken, assume_unique=True)
     rng = np.random.default_rng(seed + 1)
@@ -101,9 +102,6 @@ def choose_tolerance(scene: Scene, verification_sample: int | None = None, execu
     ``verification_sample``: the size the verification will rerun (``--check N``;
     default from [verification]), whose indices the pilot avoids.
     """
-    from ..kinds.check import rerun_labels, rerun_named, tightened
-    from .runner import prepare_catalogues
-
     total = scene.grid.size * scene.initial_conditions.count
     reason = skip_reason(scene, total)
     if reason is not None:
@@ -171,7 +169,12 @@ def _looser(scene: Scene) -> list[float]:
     return [r for r in CANDIDATES if r > scene.integrator.rtol]
 
 
-def _trial_text(trial: Trial, sample: int) -> str:
-    from ..report.verification import pilot_trial_text
+def pilot_trial_text(trial: Mapping[str, Any], sample: int) -> str:
+    """How one candidate of the pilot did, e.g. ``0 of 400 disagree (1.2 s)``."""
+    if trial["names_differ"]:
+        return "its attractor search found other attractors"
+    return f"{trial['disagreements']} of {sample} disagree ({trial['wall_s']:.1f} s)"
 
+
+def _trial_text(trial: Trial, sample: int) -> str:
     return pilot_trial_text(asdict(trial), sample)

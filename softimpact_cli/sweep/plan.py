@@ -7,6 +7,7 @@ flat indices, so its results are slices of the final arrays.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -14,7 +15,7 @@ import numpy as np
 
 from ..config import Scene
 from ..config.space import OVERHEAD_BYTES, check_disk, check_memory, size_text
-from ..kinds import get as kind_of
+from .chunks import CELL_BLOCK
 
 # bytes per trajectory of the per-trajectory variables (label, status, period, periods_used,
 # contacts, max_penetration, captured, steps, stiff_steps: chunks.RESULT_FIELDS)
@@ -22,6 +23,30 @@ BYTES_PER_IC = 4 + 1 + 2 + 4 + 4 + 4 + 1 + 4 + 4
 # labels assumed for the representative orbits (attractor_points: labels x grid points x
 # max_orbit_period x dim floats); catalogues of the study have at most a dozen
 LABELS_ESTIMATE = 16
+
+
+@dataclass(frozen=True)
+class SweepSettings:
+    """What a sweep reads of its scene's [analysis] (``scene.analysis``): a sweep kind's
+    settings give the same names, and its hooks, so that the sweep knows no kind.
+
+    kind : the kind's name (stored as the result's ``analysis``)
+    label_tol : tolerance of matching a converged orbit to the catalogue
+    needs_attractors : stop before any chunk or file when the catalogue is empty
+    after_sweep(ds, scene, catalogue) -> Dataset, or None : the kind's variables added to
+        the labelled dataset (the map's solution counts, the tipping matrix)
+    """
+
+    kind: str
+    label_tol: float = 1e-3
+
+    @property
+    def needs_attractors(self) -> bool:
+        return False
+
+    @property
+    def after_sweep(self) -> Callable | None:
+        return None
 
 
 @dataclass(frozen=True)
@@ -65,7 +90,7 @@ class Plan:
         else:  # sample index, initial_state, per-sample t0
             total += 8 * self.n_ic * (2 + dim)
         total += 8 * LABELS_ESTIMATE * grid.size * sc.integrator.max_orbit_period * dim
-        if kind_of(sc.analysis.kind).after_sweep is not None:  # per-point variables
+        if sc.analysis.after_sweep is not None:  # the kind's per-point variables
             total += 3 * 8 * grid.size  # (the map's predicted, found, found_nonimpacting)
         return total
 
@@ -103,8 +128,6 @@ def chunk_size_for(scene: Scene, given: int | None, workers: int) -> int:
     rounded up to a multiple of CELL_BLOCK when the scene uses recurrence cells, so that
     chunks hold whole blocks and the labels do not depend on the chunk size or on the
     number of workers (``chunks.run_chunk`` starts a table at every block)."""
-    from .chunks import CELL_BLOCK
-
     block = CELL_BLOCK if scene.integrator.cell_size > 0.0 else 1
     if given:
         return -(-given // block) * block

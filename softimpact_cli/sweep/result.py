@@ -7,9 +7,10 @@ import re
 import numpy as np
 import xarray as xr
 
+from ..analysis.attributes import attribute_list
 from ..analysis.labels import latex_of, name_of
-from ..config import Scene
-from ..config.axes import axis_units
+from ..config import Scene, forcing_period
+from ..config.axes import GRID_AXES, axis_units
 from .chunks import RESULT_FIELDS
 
 ATTRIBUTES = {
@@ -75,7 +76,7 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
                     for a in grid.names}
     # the forcing period of the scene, or of the first grid point when w is swept (each
     # point then has its own, 2 pi / w, and starts at t0 = 0: config.sweep.W_SWEPT_T0)
-    period = 2 * np.pi / float(grid.point(0)["w"] if "w" in grid.swept else scene.values["w"])
+    period = forcing_period(grid.point(0) if "w" in grid.swept else scene.values)
     if "t0" not in grid.swept and ic.t0 is not None:  # the fixed start actually used
         coords["t0"] = (along or "t0", np.full(len(grid.axes["t0"]), float(ic.t0)),
                         coords["t0"][2])
@@ -136,3 +137,32 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     if ic.kind == "plane":
         attrs["plane_fixed"] = ", ".join(f"{k}={v}" for k, v in (ic.fixed or {}).items())
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+# ---------------------------------------------------------------- reading the schema
+
+
+def grid_dims(ds) -> tuple[str, ...]:
+    """The dims a sweep's grid points span: its swept model parameters and GRID_AXES, or
+    ("panel",); without those a selection took away (``ds.sel(d=10)`` keeps d as a
+    scalar coordinate)."""
+    dims = attribute_list(ds.attrs, "grid_dims", GRID_AXES)
+    return tuple(d for d in dims if d in ds.dims or d not in ds.coords)
+
+
+def grid_axes(ds) -> tuple[str, ...]:
+    """Every axis with a value at each grid point: the model parameters the sweep spans
+    besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES."""
+    return tuple(attribute_list(ds.attrs, "grid_parameters")) + GRID_AXES
+
+
+def grid_point(ds, index: tuple[int, ...]) -> dict:
+    """Parameter values of the grid point at ``index`` (over grid_dims); t0 is "random"
+    when each sample has its own start time."""
+    dims = grid_dims(ds)
+    sel = dict(zip(dims, index, strict=True))
+    point = {a: float(ds[a].isel({k: v for k, v in sel.items() if k in ds[a].dims}).values)
+             for a in grid_axes(ds)}
+    if ds.attrs.get("t0_mode") == "random":
+        point["t0"] = "random"
+    return point

@@ -11,17 +11,12 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..analysis.catalogue import (
-    Catalogue,
-    catalogue_dataset,
-    extend_catalogue,
-    require_attractors,
-    scene_body_attractors,
-)
-from ..config import ConfigError, Scene
+from ..analysis.catalogue import Catalogue, catalogue_dataset, extend_catalogue, require_attractors
+from ..analysis.critical_distance import critical_distance, uncoupled_pair
+from ..config import ConfigError, Scene, forcing_period
 from ..config.axes import catalogue_axes, catalogue_key
-from ..kinds import get as kind_of
 from ..store import open_result
+from ..store.catalogues import scene_body_attractors
 from ..store.lock import output_lock
 from ..store.provenance import command_line, history_line, provenance
 from ..store.sweep_store import (
@@ -90,7 +85,6 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
     """
     if scene.integrator.capture_tol <= 0.0:
         return None
-    from ..analysis.critical_distance import critical_distance, uncoupled_pair
 
     check_bodies(scene.system.bodies, "capturable_orbits (d_crit of a pair's x1 - x2 - d)")
     axes = catalogue_axes(scene.system)
@@ -155,7 +149,7 @@ def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
                    ) -> SweepInputs:
     """The catalogues, names and worker context of a sweep scene (says what it found)."""
     catalogues, names = prepare_catalogues(scene)
-    if kind_of(scene.analysis.kind).needs_attractors:  # stop before any chunk or file
+    if scene.analysis.needs_attractors:  # stop before any chunk or file
         require_attractors(next(iter(catalogues.values())), scene.analysis.kind,
                            str(scene.source))
     echo(f"catalogue search: {next(iter(catalogues.values())).source}")
@@ -165,7 +159,7 @@ def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
     ic = scene.initial_conditions
     t0_per_sample = None
     if ic.t0 is None:
-        t0_per_sample = ic.random_t0(2 * np.pi / float(scene.values["w"]))
+        t0_per_sample = ic.random_t0(forcing_period(scene.values))
     context = sweep_context(scene, catalogues, names, t0_per_sample)
     return SweepInputs(catalogues, names, next(iter(catalogues.values())), t0_per_sample,
                        context)
@@ -190,7 +184,7 @@ def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: di
     ds = sweep_dataset(scene, arrays, orbits, inputs.names, inputs.t0_per_sample)
     if table.data_vars:
         ds = xr.merge([ds, table], combine_attrs="override", compat="override")
-    after = kind_of(scene.analysis.kind).after_sweep  # e.g. the map's solution counts
+    after = scene.analysis.after_sweep  # the kind's hook: e.g. the map's solution counts
     if after is not None:
         ds = after(ds, scene, inputs.first)
     catalogue_vars = catalogue_dataset(inputs.first, scene.system, scene.integrator)

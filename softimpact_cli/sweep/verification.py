@@ -2,7 +2,7 @@
 disagreement, and tighten the whole sweep when the bound is too high.
 
 After a sweep (basins, stability, map), ``n = [verification] sample_size(total)`` random
-trajectories are rerun at ``kinds.check.tightened`` settings (rtol and atol / 100,
+trajectories are rerun at ``sweep.check.tightened`` settings (rtol and atol / 100,
 convergence_tol / 10, twice the periods, 4x the RK4 steps, capture off, each in its own
 chunk so recurrence cells are off) and compared with the labels the sweep stored. The
 share that disagrees gets a 95% Wilson interval ``[low, high]``; with ``threshold`` from
@@ -41,8 +41,16 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..analysis.stability import Z95
-from ..config import IntegratorSettings, Scene
+from ..analysis.stability import Z95, wilson_interval
+from ..config import IntegratorSettings, Scene, VerificationSettings
+from ..store import add_attributes, open_result, update_attributes, write_result
+from ..store.lock import output_lock
+from ..store.provenance import command_line
+from ..store.sweep_store import DamagedHeader, SweepStore, result_problem
+from .check import check_sweep, tightened
+from .executors import make_executor
+from .pilot import choose_tolerance, scene_as_run
+from .runner import refuse_existing, run_sweep
 
 VERIFIED, BOUNDED, TIGHTENED, OVER = "verified", "bounded", "tightened", "over threshold"
 INCONCLUSIVE = "inconclusive"  # what BOUNDED was called in results written before it
@@ -71,9 +79,9 @@ def not_applicable(kind) -> str:
 def settings_text(s: IntegratorSettings) -> str:
     """The integrator settings that decide labels, as one line."""
     parts = [s.resolved_method]
-    if s.resolved_method != "exact":  # (the exact flow has no tolerance)
+    if not s.traits.closed_form:  # (the exact flow has no tolerance)
         parts += [f"rtol {s.rtol:.3g}", f"atol {s.atol:.3g}"]
-    if s.resolved_method == "rk4":
+    if s.traits.fixed_step:
         parts.append(f"{s.steps_per_period} steps per period")
     parts += [f"convergence_tol {s.convergence_tol:.3g}", f"{s.max_periods} periods",
               f"capture {s.capture_tol:g}" if s.capture_tol > 0 else "capture off",
@@ -107,8 +115,6 @@ class Attempt:
         """What the ladder should tighten first: "tolerance" when the run's settings
         without capture and cells already disagree beyond the threshold, else "shortcuts"
         (capture and recurrence cells)."""
-        from ..analysis.stability import wilson_interval
-
         if not self.alone_disagreements:
             return "shortcuts"
         (_,), (high,) = wilson_interval(np.array([self.alone_disagreements]), self.sample)
@@ -137,9 +143,6 @@ def check_result(scene: Scene, ds: xr.Dataset, sample: int, seed: int, executor=
                  ) -> Attempt:
     """Rerun ``sample`` random trajectories of the sweep result ``ds`` (of ``scene``) at
     tightened settings and compare with its stored labels."""
-    from ..analysis.stability import wilson_interval
-    from ..kinds.check import check_sweep, tightened
-
     report = check_sweep(scene, sample, seed, result=ds, executor=executor)
     (low,), (high,) = wilson_interval(np.array([report["changed"]]), max(report["sample"], 1))
     return Attempt(settings=settings_text(scene.integrator),
@@ -158,7 +161,7 @@ def ladder(s: IntegratorSettings, blame: str = "shortcuts"
     ``blame`` (:meth:`Attempt.blame`) "tolerance": the tolerance first, capture and cells
     kept (they cost nothing in labels there), then both. The exact flow has no tolerance
     to tighten: its one rung is capture and cells off."""
-    if s.resolved_method == "exact":
+    if s.traits.closed_form:
         blame = "shortcuts"
     if blame == "tolerance":
         tighter = replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
@@ -172,7 +175,7 @@ def ladder(s: IntegratorSettings, blame: str = "shortcuts"
     if s.cell_size > 0 or s.capture_tol > 0:
         s = replace(s, cell_size=0.0, capture_tol=0.0)
         rungs.append(("recurrence cells and capture off", s))
-    if s.resolved_method == "exact":
+    if s.traits.closed_form:
         return rungs
     s = replace(s, rtol=max(s.rtol / 100, 1e-14), atol=s.atol / 100,
                 steps_per_period=4 * s.steps_per_period)
@@ -197,8 +200,6 @@ def verify_sweep(scene: Scene, ds: xr.Dataset, redo: Callable[[Scene, int], xr.D
     ``sample`` overrides the [verification] sample size (``--check N``). Returns the
     final dataset with the ``verify_*`` attributes.
     """
-    from ..config import VerificationSettings
-
     settings = scene.verification or VerificationSettings()  # a Scene built by hand
     total = int(ds.attrs["n"])
     n = min(sample if sample is not None else settings.sample_size(total), total)
@@ -233,8 +234,6 @@ def stalled(attempts: list[Attempt]) -> bool:
 
 
 def _reference(scene: Scene) -> IntegratorSettings:
-    from ..kinds.check import tightened
-
     return tightened(scene.integrator)
 
 
@@ -314,8 +313,6 @@ def redo_path(out: Path, rung: int) -> Path:
 
 def remove_redo_files(out: Path) -> None:
     """The redone sweeps beside ``out`` and their chunk folders."""
-    from ..store.sweep_store import SweepStore
-
     for rung in range(1, MAX_RUNGS + 1):
         SweepStore(redo_path(out, rung)).remove()
 
@@ -323,8 +320,6 @@ def remove_redo_files(out: Path) -> None:
 def pending(out: Path, n_total: int) -> bool:
     """Whether ``out`` is a complete sweep of ``n_total`` trajectories whose verification
     was interrupted (a header that only says it is complete is left to the resume)."""
-    from ..store.sweep_store import DamagedHeader, SweepStore, result_problem
-
     try:
         header = SweepStore(out).header()
     except DamagedHeader:
@@ -340,19 +335,10 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
     """Run (or resume) the sweep ``scene`` into ``out`` and verify it (``verify`` False, or
     [verification] enabled = false: recorded as not verified). ``run_options`` go to
     ``run_sweep`` (workers, scheduler, overwrite, chunk_size, progress)."""
-    from ..store import add_attributes, update_attributes, write_result
-    from ..store.lock import output_lock
-    from ..store.provenance import command_line
-    from .executors import make_executor
-    from .pilot import choose_tolerance, scene_as_run
-    from .runner import refuse_existing, run_sweep
-
     with output_lock(out, command_line()):
         enabled = verify and (scene.verification is None or scene.verification.enabled)
         executor = make_executor(run_options.get("workers"), run_options.get("scheduler"))
         if resume and pending(out, scene.grid.size * scene.initial_conditions.count):
-            from ..store import open_result
-
             echo(f"resume: {out} is complete; finishing its verification")
             ds = open_result(out)
             scene = scene_as_run(scene, ds.attrs)
@@ -375,7 +361,6 @@ def sweep_verified(scene: Scene, out: Path, verify: bool = True, sample: int | N
 
         def redo(tighter: Scene, rung: int) -> xr.Dataset:
             path = redo_path(out, rung)
-            from ..store.sweep_store import SweepStore
 
             return run_sweep(tighter, path, resume=resume and SweepStore(path).exists(),
                              overwrite=True, echo=echo, **options)

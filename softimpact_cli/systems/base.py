@@ -172,7 +172,13 @@ class System:
 
     def period(self, packed: np.ndarray) -> float:
         """Forcing period ``T = 2 pi / w`` (dimensionless time)."""
-        return 2.0 * np.pi / float(packed[self.forcing_frequency_index])
+        return forcing_period_of(packed[self.forcing_frequency_index])
+
+
+def forcing_period_of(w: float) -> float:
+    """The forcing period ``T = 2 pi / w`` (dimensionless time): the one place it is
+    computed (``System.period``, ``config.forcing_period`` of a scene's values)."""
+    return 2.0 * np.pi / float(w)
 
 
 # Coupling parameters shared by every pair (SPEC.md section 2).

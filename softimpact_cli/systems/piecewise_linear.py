@@ -20,7 +20,8 @@ from math import ceil
 import numpy as np
 
 from ..kernels.exact import HEADER, STEP_PHASE, expm
-from .base import System
+from . import get_system
+from .base import System, forcing_period_of
 
 LINEARITY_TOL = 1e-9  # relative: the check on random states and times
 MIN_STEPS = 4  # steps per period at least (what STEP_PHASE gives the forcing itself)
@@ -37,7 +38,7 @@ def mode_generator(system: System, params: np.ndarray, mode: int) -> np.ndarray:
     side is not affine in the state with forcing at w."""
     dim = system.dim
     w = float(params[system.forcing_frequency_index])
-    T = 2.0 * np.pi / w
+    T = forcing_period_of(w)
     zero = np.zeros(dim)
     times = np.array([0.0, 0.25 * T, 0.5 * T])
     free = np.array([_rhs(system, params, t, zero, mode) for t in times])  # (3, dim)
@@ -97,14 +98,12 @@ def exact_block(system: System, params: np.ndarray) -> np.ndarray:
 
 @lru_cache(maxsize=256)
 def _cached_block(model: str, bodies: int, packed: bytes) -> np.ndarray:
-    from . import get_system
-
     system = get_system(model, bodies)
     params = np.frombuffer(packed, dtype=np.float64)
     dim = system.dim
     aug = dim + 3
     w = float(params[system.forcing_frequency_index])
-    period = 2.0 * np.pi / w
+    period = forcing_period_of(w)
     A = system.surfaces(params).A
     n_modes = 1 << A.shape[0]
     parts = [np.array([n_modes, aug, w, A.shape[0]], dtype=np.float64)]

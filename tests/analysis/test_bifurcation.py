@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 
 from softimpact_cli.analysis.bifurcation import bifurcation_dataset, d_values
-from softimpact_cli.analysis.catalogue import build_catalogue, sample_states
+from softimpact_cli.analysis.catalogue import sample_states
 from softimpact_cli.analysis.critical_distance import critical_distances
 from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.store.catalogues import build_catalogue
 from softimpact_cli.systems import get_system
 
 VALUES = dict(c=0.05, k1=1.0, k2=0.01, F=1.0, w=1.3, d=22.5, phi=5 * np.pi / 8, k_c=8.0,

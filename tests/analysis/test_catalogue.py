@@ -6,7 +6,6 @@ import pytest
 from softimpact_cli.analysis.catalogue import (
     SHOOTING,
     body_problem,
-    build_catalogue,
     catalogue_dataset,
     catalogue_from_dataset,
     label_orbit,
@@ -14,6 +13,7 @@ from softimpact_cli.analysis.catalogue import (
 )
 from softimpact_cli.analysis.engine import Problem, classify_state, flow
 from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.store.catalogues import build_catalogue
 from softimpact_cli.systems import get_system
 
 BILINEAR = dict(c=0.02, k1=1.0, k2=29.0, F=0.518, w=0.86, d1=1.26, d=100.0, phi=0.7, k_c=8.0,

@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from softimpact_cli.analysis.catalogue import build_catalogue, sample_states
+from softimpact_cli.analysis.catalogue import sample_states
 from softimpact_cli.analysis.critical_distance import critical_distances
 from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.store.catalogues import build_catalogue
 from softimpact_cli.systems import get_system
 
 DUFFING = dict(c=0.05, k1=1.0, k2=0.01, F=1.0, w=1.3, d=6.0, phi=0.0, k_c=8.0, c_c=10.0,

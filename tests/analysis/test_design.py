@@ -17,8 +17,8 @@ from softimpact_cli.analysis.design import (
 )
 from softimpact_cli.analysis.engine import Problem, flow
 from softimpact_cli.analysis.stability import wilson_interval
-from softimpact_cli.config import parse_scene
 from softimpact_cli.kernels.codes import IMPACTING_BASE, UNRESOLVED_LABEL
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.report.info import design_summary
 
 # ------------------------------------------------------------------ pure parts

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from softimpact_cli.analysis.catalogue import build_catalogue, sample_states
+from softimpact_cli.analysis.catalogue import sample_states
 from softimpact_cli.analysis.engine import Problem, classify_state
 from softimpact_cli.analysis.lyapunov import (
     floquet_exponents,
@@ -14,6 +14,7 @@ from softimpact_cli.analysis.lyapunov import (
 )
 from softimpact_cli.analysis.lyapunov_scans import Averaging, catalogue_spectra
 from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.store.catalogues import build_catalogue
 from softimpact_cli.systems import get_system
 
 # Ueda's oscillator x'' + 0.05 x' + x^3 = 7.5 cos t (ours: sin t, a quarter period later:

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import run_sweep
 
 SCENE = """

@@ -5,7 +5,7 @@ import pytest
 
 from softimpact_cli.analysis.labels import parse_label
 from softimpact_cli.analysis.stability import basin_stability, wilson_interval
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import run_sweep
 
 

@@ -4,9 +4,10 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.config import ANALYSIS_KINDS, parse_scene
 from softimpact_cli.config.examples import EXAMPLES, example
+from softimpact_cli.kinds import ANALYSIS_KINDS
 from softimpact_cli.kinds.run import run_scene
+from softimpact_cli.kinds.scene import parse_scene
 
 
 def test_every_analysis_kind_has_an_example():

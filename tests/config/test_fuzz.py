@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from softimpact_cli.config import SWEEP_KINDS, ConfigError, check_writable, parse_scene
+from softimpact_cli.config import ConfigError, check_writable
 from softimpact_cli.config.limits import (
     MAX_GRID_VALUES,
     MAX_INITIAL_CONDITIONS,
@@ -29,6 +29,8 @@ from softimpact_cli.config.limits import (
     MAX_TRAJECTORIES,
     MAX_TRAJECTORY_SAMPLES,
 )
+from softimpact_cli.kinds import SWEEP_KINDS
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep.plan import Plan, default_chunk_size
 
 ROOT = Path(__file__).parents[2]

@@ -6,8 +6,9 @@ import sys
 
 import pytest
 
-from softimpact_cli.config import COUPLING_AXES, GRID_AXES, ConfigError, parse_scene
+from softimpact_cli.config import COUPLING_AXES, GRID_AXES, ConfigError
 from softimpact_cli.config.axes import allowed_axes, every_axis, parameter_axes
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.systems import get_system
 
 PAIR = """

@@ -4,7 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from softimpact_cli.config import ConfigError, load_scene, parse_scene
+from softimpact_cli.config import ConfigError
+from softimpact_cli.kinds.scene import load_scene, parse_scene
 
 GOOD = """
 [system]

@@ -7,7 +7,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from softimpact_cli.config import ConfigError, VerificationSettings, parse_scene
+from softimpact_cli.config import ConfigError, VerificationSettings
+from softimpact_cli.kinds.scene import parse_scene
 
 BASINS = """
 [system]

@@ -18,7 +18,7 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.kinds.key_reference import read_schema
 from tests.test_readme import _cheap, make_targets, resolve, shell_lines, without_optional
 

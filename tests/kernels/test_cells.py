@@ -58,8 +58,9 @@ def test_wider_states_are_refused_not_silently_uncelled():
 
 
 def test_scene_refuses_cells_for_a_wider_state(monkeypatch):
-    import softimpact_cli.config.scene as scene_module
-    from softimpact_cli.config import ConfigError, parse_scene
+    import softimpact_cli.config.scene as scene_module  # its reader of [system]
+    from softimpact_cli.config import ConfigError
+    from softimpact_cli.kinds.scene import parse_scene
     from tests.kernels.test_energy import WORK_PAIR
 
     monkeypatch.setattr(scene_module, "get_system", lambda model, bodies: WORK_PAIR)

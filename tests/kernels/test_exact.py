@@ -13,8 +13,9 @@ import numpy as np
 import pytest
 
 from softimpact_cli.analysis.engine import Problem, record_trajectory
-from softimpact_cli.config import ConfigError, parse_scene
+from softimpact_cli.config import ConfigError
 from softimpact_cli.kernels.codes import OK
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.systems import get_system
 from softimpact_cli.systems.piecewise_linear import exact_refusal, mode_generator
 from softimpact_cli.systems.variational import variational_system
@@ -176,7 +177,7 @@ def test_variational_equations_fall_back_to_dopri5():
 
 def test_info_names_the_exact_flow_steps(tmp_path):
     from softimpact_cli.api import run
-    from softimpact_cli.report.info import describe
+    from softimpact_cli.kinds.results import describe
 
     ds = run('[system]\nmodel = "bilinear"\nbodies = 1\n[analysis]\nkind = "trajectory"\n'
              "state = [0.5, 0.0]\nperiods = 4\n")

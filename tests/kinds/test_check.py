@@ -7,8 +7,10 @@ import sys
 import numpy as np
 import xarray as xr
 
-from softimpact_cli.config import IntegratorSettings, parse_scene
-from softimpact_cli.kinds.check import check_scene, tightened
+from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.kinds.check import check_scene
+from softimpact_cli.kinds.scene import parse_scene
+from softimpact_cli.sweep.check import tightened
 
 SWEEP = """
 [system]
@@ -101,8 +103,8 @@ def test_fail_over_names_the_share_that_exceeds_it():
 def test_check_fail_over_exits_1(monkeypatch, tmp_path):
     from click.testing import CliRunner
 
+    from softimpact_cli import cli as check_module  # where the command calls check_scene
     from softimpact_cli.cli import main
-    from softimpact_cli.kinds import check as check_module
 
     report = {"kind": "labels", "sample": 10, "changed": 3, "changed_share": 0.3,
               "changes": {"A -> B": 3}, "wall_s": 1.0, "tight_wall_s": 2.0, "wall_ratio": 2.0}

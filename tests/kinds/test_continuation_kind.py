@@ -9,7 +9,8 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.config import ConfigError, parse_scene
+from softimpact_cli.config import ConfigError
+from softimpact_cli.kinds.scene import parse_scene
 
 SCENE = """
 [system]

@@ -119,8 +119,8 @@ def test_a_plane_too_small_or_not_a_plane_is_refused():
 
 
 def test_the_scene_kind_reads_its_keys_and_refuses_what_does_not_fit():
-    from softimpact_cli.config import parse_scene
     from softimpact_cli.config.examples import example
+    from softimpact_cli.kinds.scene import parse_scene
 
     text = example("fractality")
     scene = parse_scene(text, "f.toml")

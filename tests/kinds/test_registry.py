@@ -2,24 +2,23 @@
 info dispatch through it, and a new kind is one module (here: one registry entry)."""
 
 import pytest
-import xarray as xr
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.config import ConfigError, parse_scene
+from softimpact_cli.config import ConfigError
 from softimpact_cli.config.examples import example as example_scene
 from softimpact_cli.kinds import (
     ANALYSIS_KINDS,
     KINDS,
+    REGISTRY,
     SWEEP_KINDS,
     AnalysisKind,
-    PlotOption,
-    PlotSpec,
     get,
 )
 from softimpact_cli.kinds.check import check_scene
+from softimpact_cli.kinds.results import describe
 from softimpact_cli.kinds.run import plan_text, run_scene
-from softimpact_cli.report.info import describe
+from softimpact_cli.kinds.scene import parse_scene
 
 
 def test_every_kind_declares_a_figure_and_the_plot_commands_follow_the_registry():
@@ -66,40 +65,10 @@ def test_a_kind_without_a_check_names_those_with_one():
         check_scene(scene)
 
 
-def _toy_read(sec, ctx):
-    from dataclasses import make_dataclass
-
-    settings = make_dataclass("ToyAnalysis", [("kind", str), ("scale", float)], frozen=True)
-    return settings("toy", sec.number("scale", 1.0))
-
-
-def _toy_run(scene, progress=None, **_):
-    w = float(scene.values["w"])
-    return xr.Dataset({"omega": ((), scene.analysis.scale * w)},
-                      attrs={"analysis": "toy", "outcome": "done"})
-
-
-def toy_figure(ds, ax=None, marker="o"):
-    """The toy kind's figure: its one number as a point."""
-    from softimpact_cli.plot import new_figure
-
-    fig = new_figure() if ax is None else ax.figure
-    (fig.add_subplot() if ax is None else ax).plot([0.0], [float(ds["omega"])], marker)
-    return fig
-
-
-TOY = AnalysisKind("toy", "a kind added by one registry entry", _toy_read,
-                   lambda scene, workers=None, chunk_size=None: "toy: scale the frequency",
-                   run=_toy_run, summary=lambda ds: {"omega": float(ds["omega"])},
-                   plot=PlotSpec("The toy's frequency.", draw=f"{__name__}:toy_figure",
-                                 options=(PlotOption("--marker", "marker", "A marker.",
-                                                     kind="choice", choices=("o", "x")),)))
-
-
 def test_a_new_kind_is_one_registry_entry(monkeypatch, tmp_path):
     """Registered, a kind is read, planned, run, written, described and plotted by the
     existing code, with no other change."""
-    monkeypatch.setitem(KINDS, "toy", TOY)
+    monkeypatch.setitem(REGISTRY, "toy", "tests.kinds.toy_kind")
     text = ('[system]\nmodel = "duffing"\n[analysis]\nkind = "toy"\nscale = 2.0\n'
             f'[output]\npath = "{tmp_path / "toy.h5"}"\n')
     scene = parse_scene(text, "toy.toml")
@@ -145,7 +114,6 @@ def test_sweep_kinds_refuse_resume_for_the_others(tmp_path):
 ALLOWED_KIND_TESTS = {
     "analysis/fractality.py": 1,
     "cli.py": 3,
-    "config/design.py": 1,
     "config/examples.py": 1,
 }
 

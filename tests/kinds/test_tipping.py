@@ -9,7 +9,7 @@ from click.testing import CliRunner
 import softimpact_cli as si
 from softimpact_cli.analysis.tipping import tipping_probabilities
 from softimpact_cli.cli import main
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 
 SCENE = "configs/tipping_duffing_d22_to_6.toml"
 

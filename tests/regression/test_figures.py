@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from softimpact_cli.analysis.labels import parse_label
-from softimpact_cli.config import load_scene, quick
 from softimpact_cli.kinds.run import run_scene
+from softimpact_cli.kinds.scene import load_scene, quick
 from softimpact_cli.sweep import run_sweep
 
 FIGURES = Path(__file__).parents[2] / "configs" / "figures"

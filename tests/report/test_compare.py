@@ -10,7 +10,8 @@ from click.testing import CliRunner
 
 from softimpact_cli.cli import main
 from softimpact_cli.config import ConfigError
-from softimpact_cli.report.compare import compare_results, limits_exceeded
+from softimpact_cli.kinds.results import compare_results
+from softimpact_cli.report.compare import limits_exceeded
 from softimpact_cli.store import open_result, write_result
 from tests.kinds.test_kinds import SCENES
 

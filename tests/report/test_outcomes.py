@@ -8,7 +8,8 @@ import numpy as np
 import xarray as xr
 
 from softimpact_cli.kernels.codes import DIVERGED_LABEL, UNRESOLVED_LABEL
-from softimpact_cli.report.outcomes import STRICT_STATUS, outcome_warnings
+from softimpact_cli.kinds.results import outcome_warnings
+from softimpact_cli.report.outcomes import STRICT_STATUS
 
 
 def _sweep(codes, kind="basins"):

@@ -9,7 +9,7 @@ import sys
 import pytest
 import xarray as xr
 
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.report.streams import ReaderSafeStream
 from softimpact_cli.sweep import run_sweep
 

@@ -9,18 +9,18 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from softimpact_cli.analysis import catalogue
 from softimpact_cli.analysis.catalogue import (
     body_problem,
-    cached_body_search,
     sample_states,
     search_arrays,
     search_from_arrays,
     search_key_material,
 )
 from softimpact_cli.cli import main
-from softimpact_cli.config import IntegratorSettings, parse_scene
-from softimpact_cli.store import catalogue_cache
+from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.kinds.scene import parse_scene
+from softimpact_cli.store import catalogue_cache, catalogues
+from softimpact_cli.store.catalogues import cached_body_search
 from softimpact_cli.sweep import run_sweep
 from softimpact_cli.systems import get_system
 
@@ -44,13 +44,13 @@ def own_cache(tmp_path, monkeypatch):
 def searches(monkeypatch):
     """Counts the one-body searches actually run."""
     calls = []
-    real = catalogue.body_catalogue
+    real = catalogues.body_catalogue
 
     def counted(*args, **kwargs):
         calls.append(args)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(catalogue, "body_catalogue", counted)
+    monkeypatch.setattr(catalogues, "body_catalogue", counted)
     return calls
 
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from softimpact_cli.analysis.engine import KnownOrbits, Problem, classify_state
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep.chunks import run_chunk
 from softimpact_cli.sweep.runner import prepare_catalogues, sweep_context
 
@@ -119,7 +119,7 @@ def test_contact_blocks_capture():
 
 
 def test_results_say_how_each_trajectory_was_classified_and_by_which_method(tmp_path):
-    from softimpact_cli.report.info import describe
+    from softimpact_cli.kinds.results import describe
     from softimpact_cli.sweep import run_sweep
 
     scene = parse_scene(SCENE.format(model="duffing", d=6.0, phi=0.0, lo=-12.0, hi=12.0,

@@ -6,7 +6,8 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-from softimpact_cli.config import IntegratorSettings, parse_scene
+from softimpact_cli.config import IntegratorSettings
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep.chunks import CELL_BLOCK
 from softimpact_cli.sweep.in_memory import sweep_in_memory
 from softimpact_cli.sweep.plan import chunk_size_for, default_chunk_size

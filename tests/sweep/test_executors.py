@@ -56,7 +56,7 @@ def test_a_cluster_that_loses_all_its_workers_keeps_the_chunks(tmp_path, monkeyp
     an uninterrupted run (issue 31, item 8; on eab4deb: AttributeError on the cancelled
     future's exception)."""
     distributed = pytest.importorskip("dask.distributed")
-    from softimpact_cli.config import parse_scene
+    from softimpact_cli.kinds.scene import parse_scene
     from softimpact_cli.store.sweep_store import SweepStore
     from softimpact_cli.sweep import run_sweep
     from softimpact_cli.sweep.executors import ClusterLost

@@ -12,7 +12,7 @@ import time
 import pytest
 import xarray as xr
 
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import run_sweep
 
 from .test_sweep import equal_results, scene_text

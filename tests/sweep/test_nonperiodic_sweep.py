@@ -7,8 +7,8 @@ small chunks, in memory and on a Dask cluster."""
 import numpy as np
 import pytest
 
-from softimpact_cli.config import parse_scene
 from softimpact_cli.kernels.codes import BY_SECTION, CHAOTIC_BASE, UNRESOLVED
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import run_sweep
 from softimpact_cli.sweep.in_memory import sweep_in_memory
 
@@ -86,8 +86,7 @@ def test_the_same_labels_on_a_pool_in_memory_and_on_dask(serial, tmp_path):
 
 
 def test_info_lists_the_attractor_with_its_exponents(serial):
-    from softimpact_cli.report.info import describe
-    from softimpact_cli.report.info_text import format_summary
+    from softimpact_cli.kinds.results import describe, format_summary
 
     summary = describe(serial)
     (row,) = summary["nonperiodic"]

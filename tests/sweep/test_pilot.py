@@ -9,11 +9,11 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import softimpact_cli as si
-from softimpact_cli.config import parse_scene
-from softimpact_cli.kinds.check import sample_indices
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.report.verification import pilot_line
 from softimpact_cli.sweep import pilot
 from softimpact_cli.sweep import verification as v
+from softimpact_cli.sweep.check import sample_indices
 from tests.sweep.test_verification import PLANE
 
 # figure 6(d)'s smooth Duffing plane at 32 x 32 = 1024 >= 50 x 20 trajectories
@@ -156,6 +156,6 @@ def test_an_existing_result_is_refused_before_the_pilot_spends_anything(tmp_path
     def no_pilot(*args, **kwargs):
         raise AssertionError("the pilot ran before the refusal")
 
-    monkeypatch.setattr(pilot, "choose_tolerance", no_pilot)
+    monkeypatch.setattr(v, "choose_tolerance", no_pilot)  # where the sweep calls it
     with pytest.raises(si.ConfigError, match="result exists; pass --overwrite"):
         si.sweep(SMOOTH, out, workers=1)

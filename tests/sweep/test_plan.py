@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from softimpact_cli.config import ConfigError, parse_scene
+from softimpact_cli.config import ConfigError
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import run_sweep
 from softimpact_cli.sweep.chunks import RESULT_FIELDS
 from softimpact_cli.sweep.plan import BYTES_PER_IC, Plan

@@ -4,9 +4,9 @@ time actually used, and the label as CF categorical data."""
 import numpy as np
 import pytest
 
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.results import describe
 from softimpact_cli.kinds.run import run_scene
-from softimpact_cli.report.info import describe
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.store import open_result
 from softimpact_cli.sweep import run_sweep
 from softimpact_cli.sweep.result import categorical_attrs, cf_word

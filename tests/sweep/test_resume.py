@@ -8,7 +8,8 @@ import shutil
 import numpy as np
 import pytest
 
-from softimpact_cli.config import ConfigError, parse_scene
+from softimpact_cli.config import ConfigError
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.store import open_result
 from softimpact_cli.store.sweep_store import PART, SweepStore
 from softimpact_cli.sweep import run_sweep

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from softimpact_cli.config import parse_scene
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.store import open_result
 from softimpact_cli.sweep import run_sweep
 

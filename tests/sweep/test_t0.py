@@ -5,8 +5,8 @@ import pytest
 
 from softimpact_cli.analysis.catalogue import label_orbit, sample_states
 from softimpact_cli.analysis.engine import Problem, classify_state, flow, record_trajectory
-from softimpact_cli.config import parse_scene
 from softimpact_cli.config.axes import catalogue_key
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import prepare_catalogues, run_sweep
 from softimpact_cli.systems import get_system
 

@@ -40,9 +40,10 @@ def three_body_system():
 
 
 def test_pair_code_refuses_a_third_body():
-    from softimpact_cli.analysis.catalogue import Catalogue, build_catalogue, label_orbit
+    from softimpact_cli.analysis.catalogue import Catalogue, label_orbit
     from softimpact_cli.config import IntegratorSettings
     from softimpact_cli.config.sweep import read_grid
+    from softimpact_cli.store.catalogues import build_catalogue
 
     system = three_body_system()
     with pytest.raises(NotImplementedError, match="^build_catalogue"):

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import math  # noqa: F401
+from math import gcd
 
 import numpy as np
 
 from ...analysis.labels import parse_label
+from ...kinds.scene import parse_scene
 from .. import measures as M
 from ..verdicts import Measure
 from . import _names, check
@@ -16,8 +18,6 @@ from . import _names, check
 
 
 def _defaults(model: str, study: dict) -> Measure:
-    from ...config import parse_scene
-
     scene = parse_scene(f'[system]\nmodel = "{model}"\n[analysis]\nkind = "dcrit"\n')
     values = {"M": 1.0, **scene.values}  # mass 1: the models are written for M = 1
     wrong = {k: values.get(k) for k, v in study.items() if values.get(k) != v}
@@ -40,13 +40,11 @@ def bilinear_parameters(st, runs):
 
 @check("rk4_available")
 def rk4_available(st, runs):
-    from ...config import parse_scene
-
     scene = parse_scene('[system]\nmodel = "duffing"\n[analysis]\nkind = "dcrit"\n'
                         '[integrator]\nmethod = "rk4"\nsteps_per_period = 1440\n'
                         'locate_switches = false\n')
     i = scene.integrator
-    ok = i.resolved_method == "rk4" and i.steps_per_period == 1440 and not i.locate_switches
+    ok = i.traits.fixed_step and i.steps_per_period == 1440 and not i.locate_switches
     return Measure(ok, "[integrator] method = \"rk4\", steps_per_period = 1440, "
                    "locate_switches = false is accepted (softimpact's default is 'auto')",
                    ("scene parse",))
@@ -54,8 +52,6 @@ def rk4_available(st, runs):
 
 @check("gcd_rule")
 def gcd_rule(st, runs):
-    from math import gcd
-
     ds = runs("fig10")
     names = M.combination_names(ds)
     two_five = [n for n in names if parse_label(n).period == 2

@@ -6,7 +6,17 @@ import math  # noqa: F401
 
 import numpy as np
 
+from ...analysis.catalogue import (
+    Attractor,
+    body_problem,
+    combinations,
+    right_attractors,
+    search_shares,
+)
+from ...analysis.critical_distance import relative_trace, uncoupled_pair
+from ...config import IntegratorSettings
 from .. import measures as M
+from ..runs import RUNS, MissingRun
 from ..verdicts import Measure, agrees
 from . import PI, _names, check
 
@@ -17,8 +27,6 @@ RK4_STUDY = dict(method="rk4", steps_per_period=1440, locate_switches=False)
 
 def _attractors(ds) -> list:
     """The catalogue's attractors rebuilt from a result (no search rerun)."""
-    from ...analysis.catalogue import Attractor, search_shares
-
     out = []
     for i, number in enumerate(ds["attractor"].values):
         p = int(ds["attractor_period"].values[i])
@@ -34,10 +42,6 @@ def dcrit_study_method(run, ds, name: str, phi: float, periods: int = 40) -> flo
     """d_crit as the study computes it: the uncoupled pair integrated by plain RK4 at
     T/1440 from the combination's joint orbit, x1 - x2 maximised over the 1440 step points
     of the last joint period (no location of the maximum between steps)."""
-    from ...analysis.catalogue import body_problem, combinations, right_attractors
-    from ...analysis.critical_distance import relative_trace, uncoupled_pair
-    from ...config import IntegratorSettings
-
     scene = run.scene()
     rk4 = IntegratorSettings(**RK4_STUDY)
     values = dict(scene.values)
@@ -53,8 +57,6 @@ def dcrit_study_method(run, ds, name: str, phi: float, periods: int = 40) -> flo
 
 
 def _dcrit_value(st, runs, phi: float) -> Measure:
-    from ..runs import RUNS
-
     name = "L1^2 R1-0^2"
     ds = runs("fig05")
     value = M.dcrit_at(ds, name, phi)
@@ -217,8 +219,6 @@ def _destroyed(st, runs, name: str) -> Measure:
 
 def _continuation(runs):
     """Figure 7's continuation result, or None when the run is not made (--cached-only)."""
-    from ..runs import MissingRun
-
     try:
         return runs("fig07_continuation")
     except MissingRun:

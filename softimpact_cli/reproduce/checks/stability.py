@@ -7,7 +7,7 @@ import math  # noqa: F401
 import numpy as np
 
 from .. import measures as M
-from ..runs import MissingRun
+from ..runs import RUNS, MissingRun
 from ..verdicts import Measure
 from . import CHECKS, PI, _names, _pct, _share_text, check
 from .basins import _plane
@@ -45,8 +45,6 @@ T0S = (("T/4", 0.25), ("T/2", 0.5), ("3T/4", 0.75))
 
 def _t0_values(runs, run: str) -> dict:
     """{t0 label: point} of a stability run over t0 (fig14c_t0 and fig14d_t0)."""
-    from ..runs import RUNS
-
     ds = runs(run)
     period = 2 * PI / float(RUNS[run].scene().values["w"])
     out = {}
@@ -170,8 +168,6 @@ def duffing_method_difference(st, runs):
 
 @check("fig15_settings")
 def fig15_settings(st, runs):
-    from ..runs import RUNS
-
     parts, ok = [], True
     for name, box, axis, lo, hi in (("fig15a", 2.0, "k_c", 5.0, 20.0),
                                     ("fig15b", 12.0, "c_c", 1.0, 11.0)):

@@ -11,10 +11,11 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
-from .axes import COUPLING_AXES
-from .expressions import parse_multiple
-from .limits import MAX_INITIAL_CONDITIONS, MAX_SEED
-from .reader import ConfigError, Section
+from ..analysis.labels import parse_label
+from ..config.axes import COUPLING_AXES
+from ..config.expressions import parse_multiple
+from ..config.limits import MAX_INITIAL_CONDITIONS, MAX_SEED
+from ..config.reader import ConfigError, Section
 
 DESIGN_AXES = COUPLING_AXES  # a design searches over the coupling
 
@@ -56,8 +57,6 @@ class DesignAnalysis:
 
 def check_target(name: object, where: str) -> str:
     """The target name if it names a non-impacting pair; ConfigError naming ``where``."""
-    from ..analysis.labels import parse_label
-
     if not isinstance(name, str):
         raise ConfigError(f"{where}: must be a name like 'L1^1 R1-0^1', got {name!r}")
     try:

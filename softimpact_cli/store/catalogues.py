@@ -1,0 +1,72 @@
+"""Catalogues through the catalogue cache (``catalogue_cache``): the one-body search of
+``analysis.catalogue`` read back bit for bit when an entry verifies, else searched and
+stored. The analyses never write files; these functions are what the kinds and the sweep
+call for a scene's catalogue.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..analysis.catalogue import (
+    BodySearch,
+    Catalogue,
+    body_catalogue,
+    body_problem,
+    catalogue_states,
+    extend_catalogue,
+    require_attractors,
+    search_arrays,
+    search_from_arrays,
+    search_key_material,
+)
+from ..analysis.engine import Problem
+from ..config import IntegratorSettings
+from ..systems import System
+from ..systems.base import check_bodies
+from . import catalogue_cache
+
+
+def scene_catalogue(scene) -> Catalogue:
+    """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...);
+    one line (ConfigError) and nothing further computed when it finds no attractor."""
+    search = scene_body_attractors(scene)
+    cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, *search)
+    require_attractors(cat, scene.analysis.kind, str(scene.source))
+    return cat
+
+
+def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:
+    """The one-body search every scene's catalogue starts from, over its [catalogue]
+    section's initial conditions (``states``, when the caller drew them already) at
+    t0 = 0, through the catalogue cache."""
+    c = scene.catalogue
+    states = catalogue_states(scene) if states is None else states
+    problem = body_problem(scene.system, scene.values, scene.integrator)
+    return cached_body_search(problem, states, 0.0, c.match_tol, progress)
+
+
+def build_catalogue(system: System, values: dict, integrator: IntegratorSettings,
+                    states: np.ndarray, t0: float = 0.0, match_tol: float = 1e-3,
+                    progress=None) -> Catalogue:
+    """The full catalogue: left attractors, and for a pair the right ones and combinations."""
+    check_bodies(system.bodies, "build_catalogue (left and right attractors)")
+    problem = body_problem(system, values, integrator)
+    search = cached_body_search(problem, states, t0, match_tol, progress)
+    return extend_catalogue(system, values, integrator, *search)
+
+
+def cached_body_search(problem: Problem, states: np.ndarray, t0: float = 0.0,
+                       match_tol: float = 1e-3, progress=None) -> BodySearch:
+    """:func:`body_catalogue` through the catalogue cache (``store.catalogue_cache``):
+    read back bit for bit when an entry of :func:`search_key_material` verifies, else
+    searched and stored. ``progress`` gets every sample at once on a hit."""
+    def search() -> dict[str, np.ndarray]:
+        left, counts = body_catalogue(problem, states, t0, match_tol, progress)
+        return search_arrays(BodySearch(left, counts, len(states), "computed"))
+
+    material = search_key_material(problem, states, t0, match_tol)
+    arrays, source = catalogue_cache.cached(material, search)
+    if progress is not None and source.startswith("cache"):
+        progress(len(states))
+    return search_from_arrays(arrays, source)
