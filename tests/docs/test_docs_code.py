@@ -18,8 +18,8 @@ import pytest
 from click.testing import CliRunner
 
 from softimpact_cli.cli import main
-from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.kinds.key_reference import read_schema
+from softimpact_cli.kinds.scene import parse_scene
 from tests.test_readme import _cheap, make_targets, resolve, shell_lines, without_optional
 
 ROOT = Path(__file__).parents[2]

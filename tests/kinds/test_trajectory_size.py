@@ -12,8 +12,8 @@ from click.testing import CliRunner
 
 from softimpact_cli import api
 from softimpact_cli.cli import main
-from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.kinds import get as kind_of
+from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.store import write_result
 
 SCENE = """
