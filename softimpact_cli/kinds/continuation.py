@@ -165,9 +165,7 @@ def run(scene, progress=None, **_):
             tick(len(chosen))
     ds = continuation_dataset(base, branches, fates, brute, lam0, (a.low, a.high))
     if a.start == "catalogue":  # its order gives each solution the colour of the basins
-        from ..analysis.catalogue import scene_catalogue
-
-        ds.attrs["catalogue_names"] = "; ".join(scene_catalogue(scene).names)
+        ds.attrs["catalogue_names"] = list(scene_catalogue(scene).names)
     return ds
 
 

@@ -14,6 +14,8 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Sequence
 
+from ..analysis.attributes import attribute_list
+
 IMPACTING = "#8c564b"  # every impacting solution shares one extra colour
 SPECIAL = {"unresolved": "#7f7f7f", "diverged": "#000000"}
 # 30 colours, the most distinct first (tab10 without brown and grey, then tab20's light
@@ -36,8 +38,8 @@ def solution_order(ds) -> list[str]:
     for var in ("combination_name", "attractor_name"):
         if var in ds:
             return [str(n) for n in ds[var].values]
-    names = str(ds.attrs.get("catalogue_names", ""))  # results without the catalogue's
-    return names.split("; ") if names else []         # arrays (continuation)
+    # results without the catalogue's arrays (continuation)
+    return [str(n) for n in attribute_list(ds.attrs, "catalogue_names")]
 
 
 def colour_of(name: str, order: Sequence[str] = ()) -> str:

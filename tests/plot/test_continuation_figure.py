@@ -23,7 +23,7 @@ def fold():
 
 
 def test_branches_take_the_catalogues_colours_and_typeset_names(fold):
-    order = fold.attrs["catalogue_names"].split("; ")
+    order = list(fold.attrs["catalogue_names"])  # a list attribute (analysis.attributes)
     assert order == ["L1^1", "L1^2"]
     fig = si.plot.continuation(fold)
     legend = {t.get_text(): h for t, h in zip(fig.axes[0].get_legend().get_texts(),
