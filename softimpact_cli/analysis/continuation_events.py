@@ -110,6 +110,16 @@ def _test(orbit_map: OrbitMap, point: Point, which: int) -> float:
     return float(multiplier_tests(point.multipliers)[which])
 
 
+
+def illinois(fm: float, fa: float, fb: float, side: int) -> tuple[bool, float, float, int]:
+    """One Illinois update of a bracket [a, b] with test values (fa, fb) after a trial
+    point of value ``fm``: (the trial replaces a (True) or b (False), new fa, new fb,
+    new side). The end kept twice in a row has its value halved, so regula falsi does
+    not stall on one side."""
+    if np.sign(fm) == np.sign(fa):
+        return True, fm, fb * 0.5 if side == 1 else fb, 1
+    return False, fa * 0.5 if side == -1 else fa, fm, -1
+
 def locate(orbit_map: OrbitMap, left: Point, right: Point, which: int, tol: float
            ) -> Point | None:
     """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing, 4 turn) between two
@@ -135,16 +145,11 @@ def locate(orbit_map: OrbitMap, left: Point, right: Point, which: int, tol: floa
         fm = _test(orbit_map, best, which)
         if abs(fm) <= floor:
             break
-        if np.sign(fm) == np.sign(fa):
-            a, fa = m, fm
-            if side == 1:
-                fb *= 0.5
-            side = 1
+        left_side, fa, fb, side = illinois(fm, fa, fb, side)
+        if left_side:
+            a = m
         else:
-            b, fb = m, fm
-            if side == -1:
-                fa *= 0.5
-            side = -1
+            b = m
     return best
 
 
@@ -229,16 +234,11 @@ def locate_branch_point(orbit_map: OrbitMap, left: Point, right: Point, tol: flo
         fm = _test(orbit_map, trial, 0)
         if abs(fm) <= 1e-14:
             return _on_leg(trial, left, right)
-        if np.sign(fm) == np.sign(fa):
-            A, fa = trial, fm
-            if side == 1:
-                fb *= 0.5
-            side = 1
+        left_side, fa, fb, side = illinois(fm, fa, fb, side)
+        if left_side:
+            A = trial
         else:
-            B, fb = trial, fm
-            if side == -1:
-                fa *= 0.5
-            side = -1
+            B = trial
     chord = B.u - A.u
     w = fa / (fa - fb) if fb != fa else 0.5
     u = A.u + w * chord
