@@ -18,9 +18,9 @@ A system is data plus two small jitted functions. The kernels know nothing else 
    a polynomial, so crossings and grazing extrema are located exactly and cheaply.
    A surface may be *relevant* only while another is engaged (the no-tension force
    surface only matters in contact); ``relevance[mode]`` is the mask of surfaces the
-   kernel watches in that mode. ``contact`` is the index of the surface whose engaged
-   side is a contact between bodies (``-1`` for none): contacts and penetration are
-   counted on it.
+   kernel watches in that mode. ``contacts`` is the bit mask of the surfaces whose
+   engaged side is a stop in contact (between bodies or with a wall; ``0`` for none):
+   contact onsets and the maximum penetration are counted over them.
 
 Adding a restoring force means one module that builds a :class:`System` per body count
 (as ``duffing.py`` and ``bilinear.py`` do: a body block of parameters, the stop law's
@@ -98,22 +98,48 @@ class Surfaces:
     A : (n_surfaces, dim) float64
     b : (n_surfaces,) float64
     relevance : (2**n_surfaces,) int64, mask of watched surfaces per mode
-    contact : index of the body-body contact surface, or -1
+    contacts : bit mask of the contact surfaces (bit i: surface i's engaged side is a stop
+        in contact; 0 for none): the kernels count contact onsets and the maximum
+        penetration over them
     names : one short name per surface
     """
 
     A: np.ndarray
     b: np.ndarray
     relevance: np.ndarray
-    contact: int
+    contacts: int
     names: tuple[str, ...]
+
+    @property
+    def contact(self) -> int:
+        """Index of the first contact surface, or -1 when there is none."""
+        return set_bits(self.contacts)[0] if self.contacts else -1
+
+    @property
+    def contact_indices(self) -> tuple[int, ...]:
+        """Indices of the contact surfaces, in order."""
+        return set_bits(self.contacts)
+
+
+def set_bits(mask: int) -> tuple[int, ...]:
+    """The set bits of ``mask``, lowest first."""
+    return tuple(i for i in range(int(mask).bit_length()) if (mask >> i) & 1)
+
+
+MAX_SURFACES = 16  # relevance holds 2**n_surfaces modes: 65536 entries at most
 
 
 def relevance_table(n_surfaces: int, requires: Mapping[int, int]) -> np.ndarray:
     """Mask of watched surfaces per mode.
 
     ``requires[i] = j`` means surface ``i`` is watched only while surface ``j`` is engaged.
+    The table has ``2**n_surfaces`` entries: beyond ``MAX_SURFACES`` a ValueError.
     """
+    if n_surfaces > MAX_SURFACES:
+        raise ValueError(f"{n_surfaces} switching surfaces (stops, kinks and the laws' "
+                         f"surfaces): at most {MAX_SURFACES} are allowed")
+
+
     table = np.zeros(2**n_surfaces, dtype=np.int64)
     for mode in range(2**n_surfaces):
         mask = 0

@@ -134,7 +134,7 @@ def pair_surfaces(p: np.ndarray) -> Surfaces:
 
 
 def body_surfaces(p: np.ndarray) -> Surfaces:
-    return Surfaces(np.array([[-1.0, 0.0]]), np.array([-p[D1]]), relevance_table(1, {}), -1,
+    return Surfaces(np.array([[-1.0, 0.0]]), np.array([-p[D1]]), relevance_table(1, {}), 0,
                     ("spring",))
 
 

@@ -123,7 +123,7 @@ def pair_surfaces(p: np.ndarray) -> Surfaces:
 
 
 def body_surfaces(p: np.ndarray) -> Surfaces:
-    return Surfaces(np.zeros((0, 2)), np.zeros(0), relevance_table(0, {}), -1, ())
+    return Surfaces(np.zeros((0, 2)), np.zeros(0), relevance_table(0, {}), 0, ())
 
 
 DUFFING_BODY = System(
