@@ -15,6 +15,7 @@ from pathlib import Path
 import click
 
 from .config import ConfigError, check_writable, result_path
+from .config.examples import MODEL_EXAMPLES
 from .kinds import KINDS, example_scene, help_lines, sweep_kinds
 from .kinds import get as kind_of
 from .kinds.check import check_scene, over_limit
@@ -500,7 +501,8 @@ def measure(result, output, overwrite, box_sizes, radii, wada_radius, wada_tol):
 @main.command()
 @click.argument("kind", required=False)
 def example(kind):
-    """Print a minimal commented scene of analysis KIND (no KIND: list the kinds).
+    """Print a minimal commented scene of analysis KIND, or of model "chain" (no KIND: list
+    the kinds).
 
     \b
     Example:
@@ -508,7 +510,11 @@ def example(kind):
     """
 
     if kind is None:
-        click.echo("kinds: " + ", ".join(KINDS) + " (softimpact example KIND)")
+        click.echo("kinds: " + ", ".join(KINDS) + " (softimpact example KIND); models: "
+                   + ", ".join(MODEL_EXAMPLES) + " (softimpact example MODEL)")
+        return
+    if kind in MODEL_EXAMPLES:
+        click.echo(MODEL_EXAMPLES[kind], nl=False)
         return
     if kind not in KINDS:
         click.echo(f"softimpact: error: example: unknown kind {kind!r}; kinds: "

@@ -28,34 +28,23 @@ coupling block from ``stops.py``) and its lines in ``REGISTRY`` (``systems/__ini
 and in ``variational.py``'s ``_KERNELS``. Adding a stop law is ``stops.py`` alone (its
 docstring says how). Nothing in the kernels changes for either.
 
-Adding a body (three oscillators in a row) is more than a module: the package is written
-for one body or a pair, and refuses other body counts loudly (``SUPPORTED_BODIES`` and
-:func:`check_bodies`, called at registration and where the code branches on the body
-count). It would take:
+Any number of bodies is the chain family (``chain.py``: bodies, kinks and stops as data,
+one compiled rhs for every member; ``[system] model = "chain"``). The presets keep their
+body counts (``SUPPORTED_BODIES``, :func:`check_bodies` at registration). What is written
+for a chain and what is not yet (each refuses a chain in one line before it runs, where
+the scene is read):
 
-1. ``systems``: a module with ``state_names`` ``x1, v1, x2, v2, x3, v3``, one contact
-   surface per neighbouring pair (``x1 - x2 - d12``, ``x2 - x3 - d23``), each stop force
-   from ``stops.stop_force`` with its own coupling block (``pack_coupling`` per gap) and
-   its own mode bits (``stops`` reads contact on bit 0, ``CONTACT_BIT``: a second stop
-   needs its contact bit passed like ``law_bit``), and ``SUPPORTED_BODIES`` extended.
-2. ``Surfaces.contact`` is one surface index: the kernels (``kernels/orbit.py``) count
-   contact onsets and the maximum penetration (``max_g``, ``max_penetration``, a known
-   orbit's ``d_crit``) on that surface only. Several stops need a mask of contact
-   surfaces there.
-3. ``config``: ``[system] bodies`` (1..2 today), ``[coupling]`` keys per gap and per
-   body phase, the grid axes (``config/sweep.py`` ``GRID_AXES``: one ``d``, one ``phi``),
-   and the default plane axes of ``[initial_conditions]`` (``x1, x2`` for 4 states).
-4. Labels and catalogues (``analysis/catalogue.py``, ``labels.py``): a pair's label is a
-   combination of a left and a right attractor (``right_attractors`` mirrors the left
-   body's with ``extra["right_sign"]``, ``extra["right_phase"]``; ``label_orbit`` splits
-   an orbit's state at index 2; names like ``L1^1 R1-0^1``). Three bodies need triples,
-   their shifts and names, and the label codes of ``sweep/chunks.py``.
-5. ``kernels/cells.py``: a recurrence cell's key packs at most ``MAX_CELL_DIM`` = 4
-   coordinates into an int64; six need another key (the scene reader refuses
-   ``cell_size > 0`` beyond it).
-6. The pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
-   orbits in ``sweep/runner.py``) use ``x1 - x2 - d``; the trajectory plot draws
-   ``x1 - x2``. Each needs its three-body meaning.
+1. kernels and ``Surfaces``: several contact surfaces (``contacts``, a bit mask); onsets
+   and the maximum penetration are counted over all of them (one maximum, not one per
+   stop).
+2. ``config``: the chain's scene form (``config/chain_scene.py``); [grid] axes are the
+   preset's coupling keys (``config/sweep.py``), not yet a chain's named parameters.
+3. Labels and catalogues (``analysis/catalogue.py``, ``labels.py``): pairs of the presets;
+   a chain's attractors are numbered by period only (no names per body yet).
+4. ``kernels/cells.py``: recurrence cells pack at most ``MAX_CELL_DIM`` coordinates (the
+   scene reader turns cells off beyond it).
+5. The pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
+   orbits in ``sweep/runner.py``) use ``x1 - x2 - d``.
 """
 
 from __future__ import annotations

@@ -62,7 +62,7 @@ def reference_chain(masses, c, k1, k2, F, phi, w, stops, kinks=()):
         for i in range(n):
             x, v = y[2 * i], y[2 * i + 1]
             force[i] = (F[i] * np.sin(w * t + phi[i]) - c[i] * v - k1[i] * x - k2[i] * x**3)
-        for k, (i, position, side, stiffness) in enumerate(kinks):
+        for k, (i, position, _side, stiffness) in enumerate(kinks):
             if (mode >> (len(stops) + k)) & 1:
                 force[i] -= stiffness * (y[2 * i] - position)
         for s, stop in enumerate(stops):
@@ -288,3 +288,31 @@ def test_overlapping_kinks_and_wrong_list_lengths_are_named():
         "kinks 1 and 2 overlap: body 1, side 'left', position -1"]
     with pytest.raises(ValueError, match="phi: 3 values for 2 bodies"):
         chain_values(model, 1.0, {"phi": [0, 1, 2]})
+
+
+# ---------------------------------------------------------------- the exact flow
+
+
+def test_a_linear_chain_runs_on_the_exact_flow():
+    """Three linear bodies, a kink, stops between bodies and against a wall: method
+    "exact" (each mode's flow in closed form) agrees with tight dopri5; a cubic term is
+    refused with the mode named."""
+    model = ChainModel(3, kinks=(Kink(1, "left"),),
+                       stops=(Stop(1, 2), Stop(2, 3, law="no-tension"),
+                              Stop(3, side="left")))
+    values = chain_values(model, 1.1, {"c": 0.1, "k1": [1.0, 1.5, 0.8], "F": 1.0,
+                                       "phi": [0.0, 1.0, 2.0], "m": [1.0, 2.0, 0.5]},
+                          kinks=[{"x": -1.0, "k": 3.0}],
+                          stop_values=[{"d": 0.5, "k_c": 5.0, "c_c": 1.0},
+                                       {"d": 0.5, "k_c": 5.0, "c_c": 1.0},
+                                       {"wall": -1.5, "k_c": 10.0, "c_c": 0.5}])
+    system = chain_system(model)
+    assert system.piecewise_linear
+    y0 = np.array([0.5, 0.0, -0.3, 0.2, 0.1, 0.0])
+    _, exact = sections(system, values, y0, 10, IntegratorSettings(method="exact"))
+    _, tight = sections(system, values, y0, 10)
+    assert exact.contacts.sum() > 5
+    assert np.max(np.abs(exact.section_y - tight.section_y)) < 1e-7
+    cubic = dict(values, **{"k2.2": 0.01})
+    with pytest.raises(ValueError, match="chain of 3: mode 0's right-hand side is not linear"):
+        Problem(system, cubic, IntegratorSettings(method="exact"))
