@@ -103,7 +103,11 @@ def main():
     parser.add_argument("--plane", type=int, default=16)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--family", action="store_true", help="also the family alone")
+    parser.add_argument("--family-only", action="store_true", help="the family alone")
     args = parser.parse_args()
+    if args.family_only:
+        family()
+        return
     print("| case | preset CPU s | chain CPU s | ratio preset/chain | outcomes |")
     print("| --- | --- | --- | --- | --- |")
     y0 = np.array([8.0, 0.0, -4.0, 0.0])
@@ -122,14 +126,14 @@ def main():
 
 def family():
     six = ChainModel(6, stops=tuple(Stop(i, i + 1) for i in range(1, 6)))
-    values = chain_values(six, 1.3, {"k2": 0.01, "phi": [0.4 * i for i in range(6)]},
-                          stop_values=[{"d": 2.0}] * 5)
+    values = chain_values(six, 1.3, {"k2": 0.01, "F": 1.5, "phi": [0.9 * i for i in range(6)]},
+                          stop_values=[{"d": 0.5}] * 5)
     problem = Problem(chain_system(six), values, AUTO)
     y0 = np.linspace(-2.0, 2.0, 12)
     record_trajectory(problem, y0, 0.0, 2, 64)
     seconds, traj = cpu(trajectory(problem, y0, 1000))
     print(f"6-body chain, trajectory of 1000 periods (64 samples/period): {seconds:.2f} s CPU, "
-          f"{int(traj.contacts.sum())} contacts")
+          f"{int(traj.contacts.sum())} contacts, status {traj.status}")
     three = ChainModel(3, stops=(Stop(1, 2), Stop(2, 3)))
     values = chain_values(three, 1.3, {"k2": 0.01, "phi": [0.0, 5 * np.pi / 8, 5 * np.pi / 4]},
                           stop_values=[{"d": 2.0}] * 2)

@@ -157,3 +157,31 @@ def test_the_readme_chain_runs_as_written(tmp_path):
     result = run_scene(scene)
     assert result["section_contacts"].sum() > 0  # the stops engage
     assert result.sizes["section"] == 101 and result.sizes["variable"] == 6
+
+
+def test_lyapunov_of_a_chain_sums_to_its_damping():
+    """kind = "lyapunov" on a two-body chain with unequal masses whose stop never engages:
+    the exponents sum to the trace of the Jacobian, -(c1/m1 + c2/m2) (Liouville)."""
+    text = """
+[system]
+model = "chain"
+bodies = 2
+m = [1.0, 2.0]
+c = [0.05, 0.1]
+k2 = 0.01
+phi = [0.0, 1.0]
+
+[[stop]]
+between = [1, 2]
+d = 50.0
+
+[analysis]
+kind = "lyapunov"
+state = [1.0, 0.0, -1.0, 0.0]
+periods = 100
+transient = 10
+"""
+    ds = run_scene(parse_scene(text))
+    assert int(ds["status"][0]) == 0 and ds.sizes["order"] == 4
+    total = float(ds["exponent"][0].sum())
+    assert abs(total - (-(0.05 / 1.0 + 0.1 / 2.0))) < 1e-6
