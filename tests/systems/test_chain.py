@@ -91,6 +91,12 @@ def reference_chain(masses, c, k1, k2, F, phi, w, stops, kinks=()):
     return rhs, switches
 
 
+def onsets(solution, stops: int) -> int:
+    """Contact onsets in the referee's events: a stop's surface crossed into contact."""
+    return sum(1 for s, mode in zip(solution.event_surface, solution.event_mode, strict=True)
+               if s < stops and (mode >> s) & 1)
+
+
 def scipy_sections(rhs, switches, y0, period, periods):
     times = period * np.arange(periods + 1)
     sol = solve_with_events(rhs, y0, (0.0, times[-1]), switches, t_eval=times,
@@ -119,6 +125,7 @@ def test_three_body_chain_matches_scipy_with_located_switches():
         [(0, 1, 2.0, 8.0, 10.0, "paper"), (1, 2, 2.0, 8.0, 10.0, "paper")])
     ref = scipy_sections(rhs, switches, y0, problem.period, 20)
     assert np.max(np.abs(traj.section_y - ref.y_eval)) < 1e-6
+    assert traj.contacts.sum() == onsets(ref, 2)  # onsets counted on both stops
 
 
 def test_two_sided_stop_matches_scipy():
@@ -136,6 +143,15 @@ def test_two_sided_stop_matches_scipy():
          (0, None, (-0.8, "left"), 30.0, 0.5, "paper")])
     ref = scipy_sections(rhs, switches, y0, problem.period, 15)
     assert np.max(np.abs(traj.section_y - ref.y_eval)) < 1e-6
+    assert traj.contacts.sum() == onsets(ref, 2)  # both walls' onsets counted
+    # the running maximum over both contact functions, per period, against the
+    # referee's dense samples (x - 1 on the right wall, -0.8 - x on the left)
+    times = np.linspace(0.0, 15 * problem.period, 15 * 400 + 1)
+    dense = solve_with_events(rhs, y0, (0.0, times[-1]), switches, t_eval=times,
+                              rtol=1e-12, atol=1e-13).y_eval[:, 0]
+    g = np.maximum(dense - 1.0, -0.8 - dense).reshape(-1)[1:].reshape(15, 400).max(axis=1)
+    assert np.all(np.abs(traj.max_g[1:] - g) < 1e-3)
+    assert np.all(traj.max_g[1:] >= g - 1e-9)
 
 
 def test_wall_stop_with_kink_and_no_tension_matches_scipy():
