@@ -217,22 +217,29 @@ BILINEAR = {"c": 0.02, "k1": 1.0, "k2": 29.0, "F": 0.518, "w": 0.86, "d1": 1.26,
             "phi": 1.9, "k_c": 8.0, "c_c": 10.0, "law": "paper"}
 
 
+@pytest.mark.parametrize("law", ["paper", "no-tension", "hunt-crossley"])
 @pytest.mark.parametrize("model, values, chain, as_chain", [
     ("duffing", DUFFING, PAIR, duffing_pair_as_chain),
     ("bilinear", BILINEAR, BILINEAR_PAIR, bilinear_pair_as_chain),
 ])
-def test_preset_pair_equals_its_chain_form(model, values, chain, as_chain):
-    """Same surfaces, and rhs and Jacobian to 1e-12 in every mode at random states."""
+def test_preset_pair_equals_its_chain_form(model, values, chain, as_chain, law):
+    """Same surfaces, and rhs and Jacobian to 1e-12 in every mode at random states, for
+    every stop law (Hunt-Crossley with exponent 1.7)."""
     preset = get_system(model, 2)
+    chain = ChainModel(2, kinks=chain.kinks, stops=(Stop(1, 2, law=law),))
     member = chain_system(chain)
-    p_preset, p_chain = preset.pack(values), member.pack(as_chain(values))
+    values = dict(values, law=law, exponent=1.7)
+    in_chain = dict(as_chain(values), **{"stop.1.exponent": 1.7})
+    p_preset, p_chain = preset.pack(values), member.pack(in_chain)
     s_preset, s_chain = preset.surfaces(p_preset), member.surfaces(p_chain)
     assert np.array_equal(s_preset.A, s_chain.A) and np.array_equal(s_preset.b, s_chain.b)
+    assert np.array_equal(s_preset.relevance, s_chain.relevance)
     assert s_preset.contacts == s_chain.contacts == 1
     rng = np.random.default_rng(3)
     for mode in range(1 << s_preset.A.shape[0]):
         for _ in range(5):
             t, y = rng.uniform(0, 10), rng.uniform(-3, 3, 4)
+            y[0] = y[2] + values["d"] + rng.uniform(-0.5, 1.0)  # near and in contact
             a, b = np.empty(4), np.empty(4)
             preset.rhs(t, y, p_preset, mode, a)
             chain_rhs(t, y, p_chain, mode, b)
