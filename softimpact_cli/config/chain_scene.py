@@ -126,11 +126,24 @@ def _number(item: Any) -> float:
     return float(item)
 
 
+class _Table(Section):
+    """One table of an array (``[[stop]]``): its keys are recorded under the array's name
+    (the key reference), its errors name the table by number (``[stop 2] d: ...``)."""
+
+    def __init__(self, source: str, name: str, number: int, table: Mapping[str, Any]):
+        super().__init__(source, name, table)
+        self.index = number
+
+    def fail(self, key: str | None, problem: str) -> ConfigError:
+        where = f"[{self.name} {self.index}]" + (f" {key}" if key else "")
+        return ConfigError(f"{self.source}: {where}: {problem}")
+
+
 def _tables(source: str, doc: Mapping[str, Any], name: str) -> list[Section]:
     given = doc.get(name, [])
     if not isinstance(given, list) or not all(isinstance(t, dict) for t in given):
         raise ConfigError(f"{source}: [{name}]: must be an array of tables ([[{name}]])")
-    return [Section(source, f"{name} {i}", t) for i, t in enumerate(given, 1)]
+    return [_Table(source, name, i, t) for i, t in enumerate(given, 1)]
 
 
 def _body(sec: Section, key: str, n: int) -> int:
