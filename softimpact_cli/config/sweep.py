@@ -439,3 +439,51 @@ def read_catalogue(source: str, doc: dict, default_box) -> CatalogueSettings:
         raise sec.fail("grid", "grid and random are both 0: no initial conditions")
     sec.finish()
     return settings
+
+
+_RANGE_KEYS = ({"start", "stop", "num"}, {"start", "stop", "step"})
+
+
+def flat_grid(table: Mapping, prefix: str = "") -> dict:
+    """[grid] with TOML dotted keys joined back into parameter names: ``phi.3 = [..]``
+    (read by TOML as ``{"phi": {"3": [..]}}``) and ``"phi.3" = [..]`` both give
+    ``{"phi.3": [..]}``; a range table ({start, stop, num|step}) stays a value."""
+    out: dict = {}
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict) and set(value) not in _RANGE_KEYS:
+            out.update(flat_grid(value, name + "."))
+        else:
+            out[name] = value
+    return out
+
+
+def read_parameter_axis(source: str, doc: dict, parameters, what: str
+                        ) -> tuple[str, tuple[float, ...]] | None:
+    """[grid] of one model parameter named as the system names it (a chain's ``phi.3``,
+    ``F.1``, ``w``, ``stop.2.d``): (name, values), or None without [grid].
+
+    parameters : the system's :class:`~softimpact_cli.systems.base.Parameter` the kind can
+        sweep (each value is checked against its limits); what : the kind, for errors.
+    A phase (``phi`` or ``phi.i``) also takes the pi forms ("5*pi/8").
+    """
+    if "grid" not in doc:
+        return None
+    sec = Section(source, "grid", flat_grid(doc["grid"]))
+    allowed = {p.name: p for p in parameters}
+    given = list(sec.table)
+    if len(given) != 1:
+        raise sec.fail(None, f"{what} sweeps one parameter; got {len(given)} "
+                             f"({', '.join(given) or 'none'})")
+    axis = given[0]
+    if axis not in allowed:
+        raise sec.fail(axis, f"is not a parameter {what} can sweep; parameters: "
+                             f"{', '.join(allowed)}")
+    phase = axis == "phi" or axis.startswith("phi.")
+    values = _values(sec, axis, "pi" if phase else None, math.pi if phase else 1.0)
+    for v in values:
+        problem = allowed[axis].check(v)
+        if problem:
+            raise sec.fail(axis, f"{problem}, got {v!r}")
+    sec.finish((axis,))
+    return axis, values

@@ -1,4 +1,6 @@
-"""[analysis] kind = "dcrit": the critical distance d_crit(phi) of every combination."""
+"""[analysis] kind = "dcrit": the critical distance d_crit(phi) of every combination; on a
+chain, each stop's critical value for every non-impacting product against any parameter
+(``analysis.chain_dcrit``)."""
 
 from __future__ import annotations
 
@@ -9,12 +11,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 import xarray as xr
 
-from ..analysis.catalogue import catalogue_dataset
+from ..analysis.catalogue import catalogue_dataset, sample_states
+from ..analysis.chain_dcrit import chain_critical_gaps
 from ..analysis.critical_distance import TIGHT, critical_distances, traces
+from ..config.chain_scene import CHAIN
 from ..config.expressions import parse_multiple
 from ..config.reader import ConfigError
 from ..config.scene import thin
-from ..config.sweep import read_catalogue, read_grid
+from ..config.sweep import flat_grid, read_catalogue, read_grid, read_parameter_axis
 from ..plot import dcrit
 from ..report.compare import compare_dcrit, dcrit_comparison_text
 from ..store.catalogues import scene_catalogue
@@ -36,7 +40,29 @@ class CriticalDistanceAnalysis:
     samples: int = 512
 
 
-def read(sec, ctx) -> CriticalDistanceAnalysis:
+@dataclass(frozen=True)
+class ChainCriticalGapsAnalysis:
+    """[analysis] kind = "dcrit" on a chain: every stop's critical value for every
+    non-impacting product of the bodies' attractors, at the values ``phis`` of the
+    parameter ``axis`` ([grid], one parameter by its name; default: the scene's w alone)."""
+
+    kind: str
+    axis: str = "w"
+    phis: tuple[float, ...] = ()  # the values of ``axis`` (the name ``shrink`` thins)
+    samples: int = 512
+
+
+# a stop's own parameters leave every non-impacting solution as it is: nothing to sweep
+STOP_PREFIXES = ("stop.",)
+
+
+def read(sec, ctx) -> CriticalDistanceAnalysis | ChainCriticalGapsAnalysis:
+    if ctx.system.model == CHAIN:
+        if sec.has("traces"):
+            raise sec.fail("traces", "x1 - x2 traces are a pair's; a chain's result holds "
+                                     "each stop's critical value")
+        return ChainCriticalGapsAnalysis(
+            kind="dcrit", samples=sec.integer("samples", 512, 16, 1_000_000))
     if ctx.system.bodies != 2:
         raise sec.fail("kind", "critical distances need a pair ([system] bodies = 2)")
     raw = sec.raw("traces", [])
@@ -52,7 +78,25 @@ def read(sec, ctx) -> CriticalDistanceAnalysis:
                                     samples=sec.integer("samples", 512, 16, 1_000_000))
 
 
+def chain_parameters(system):
+    """The parameters a chain's critical values can be followed in: all but the stops'."""
+    return tuple(p for p in system.parameters if not p.name.startswith(STOP_PREFIXES))
+
+
+def _chain_sections(analysis, ctx) -> Sections:
+    for key in flat_grid(ctx.doc.get("grid", {})):
+        if key.startswith(STOP_PREFIXES):
+            raise ConfigError(f"{ctx.source}: [grid] {key}: a stop's own parameters do not "
+                              "change a non-impacting solution; sweep a body's or w")
+    read = read_parameter_axis(ctx.source, ctx.doc, chain_parameters(ctx.system), "dcrit")
+    axis, points = read if read else ("w", (float(ctx.values["w"]),))
+    catalogue = read_catalogue(ctx.source, ctx.doc, ctx.system.extra["catalogue_box"])
+    return Sections(replace(analysis, axis=axis, phis=tuple(points)), None, None, catalogue)
+
+
 def sections(analysis, ctx) -> Sections:
+    if ctx.system.model == CHAIN:
+        return _chain_sections(analysis, ctx)
     grid_doc = ctx.doc.get("grid", {})
     if set(grid_doc) - {"phi"}:
         raise ConfigError(f"{ctx.source}: [grid] {sorted(set(grid_doc) - {'phi'})[0]}: "
@@ -74,9 +118,12 @@ def shrink(analysis, grid, axis: int):
 
 
 def run(scene, progress=None, **_):
-    """d_crit(phi) of every combination, the traces of fig. 5 (b-d), and the catalogue."""
+    """d_crit(phi) of every combination, the traces of fig. 5 (b-d), and the catalogue
+    (a chain: every stop's critical value of every product, :func:`run_chain`)."""
     a = scene.analysis
     values = dict(scene.values)
+    if isinstance(a, ChainCriticalGapsAnalysis):
+        return run_chain(scene, progress)
     cat = scene_catalogue(scene)
     tick = progress(len(a.phis)) if progress else None
     ds = critical_distances(scene.system, values, list(cat.attractors), np.array(a.phis),
@@ -92,8 +139,24 @@ def run(scene, progress=None, **_):
     return ds
 
 
+def run_chain(scene, progress=None):
+    """Each stop's critical value of every non-impacting product, along the scene's axis;
+    the bodies' attractors are searched from the [catalogue] states at each value."""
+    a, c = scene.analysis, scene.catalogue
+    tick = progress(len(a.phis)) if progress else None
+    ds = chain_critical_gaps(scene.system, dict(scene.values),
+                             sample_states(c.box, c.grid, c.random, c.seed), a.axis,
+                             a.phis, a.samples, tick)
+    ds.attrs["analysis"] = "dcrit"
+    ds.attrs["forcing_period"] = forcing_period(scene.values)
+    return ds
+
+
 def plan(scene, workers=None, chunk_size=None) -> str:
     a = scene.analysis
+    if isinstance(a, ChainCriticalGapsAnalysis):
+        return (f"dcrit: every stop's critical value of every non-impacting product at "
+                f"{len(a.phis)} values of {a.axis}, {a.samples} samples per joint orbit")
     return (f"dcrit: d_crit of every combination at {len(a.phis)} phases"
             + (f", x1 - x2 traces at {len(a.traces)}" if a.traces else "")
             + f", {a.samples} samples per joint orbit")

@@ -45,7 +45,7 @@ from .common import (  # noqa: F401  (the helpers the figures share, named here 
     wrap_tex,
 )
 from .continuation_figure import draw_continuation
-from .dcrit_figure import draw_dcrit
+from .dcrit_figure import draw_chain_dcrit, draw_dcrit
 from .design_figure import draw_design
 from .fatal_shock_figure import draw_fatal_shock
 from .fractality_figure import draw_fractality
@@ -150,6 +150,10 @@ def dcrit(ds, ax=None, *, combination: str | None = None) -> Figure:
     ``ds.combination_label``)."""
 
     ds = _expect(ds, "dcrit")
+    if "stop" in ds["d_crit"].dims:  # a chain's: per stop, no traces
+        if combination is not None:
+            raise ValueError("combination: a chain's critical values hold no traces")
+        return draw_chain_dcrit(ds, ax)
     names = [str(n) for n in ds["combination_label"].values]
     if combination is not None and combination not in names:
         raise ValueError(f"combination: {combination!r} is not one of {', '.join(names)}")

@@ -144,3 +144,25 @@ def draw_dcrit(ds, combination: str | None = None, ax=None):
     fig.suptitle(f"{ds.attrs.get('model')} pair (uncoupled orbits): "
                  + parameter_text(ds, exclude=COUPLING_AXES), fontsize=9)
     return root_figure(fig)
+
+
+def draw_chain_dcrit(ds, ax=None):
+    """A chain's critical values (dims stop, combination, point): one panel per stop, a
+    curve per non-impacting product against the swept parameter (one point: markers)."""
+    stops = [int(s) for s in ds["stop"].values]
+    container, panels = place_panels(ax, (1, len(stops)), [(0, k) for k in range(len(stops))],
+                                     (4.0 * len(stops), 3.6))
+    axis = str(ds.attrs.get("axis", ""))
+    x = ds["point"].values
+    names = [str(n) for n in ds["combination_label"].values]
+    for k, (stop, panel) in enumerate(zip(stops, panels, strict=True)):
+        for c, name in enumerate(names):
+            panel.plot(x, ds["d_crit"].values[k, c], "o-" if x.size < 3 else "-",
+                       label=name, lw=1.2, ms=3)
+        panel.set_xlabel(axis)
+        panel.set_ylabel("critical value")
+        panel.set_title(f"stop {stop}")
+        panel_letter(panel, k)
+    if names:
+        panels[0].legend(fontsize="x-small")
+    return root_figure(container)

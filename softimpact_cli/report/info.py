@@ -89,7 +89,15 @@ def describe(ds, kind=None) -> dict:
 def dcrit_summary(ds) -> dict:
     """{combination: {"phi": [...], "d_crit": [...]}} of a dcrit result, or of the d_crit
     curves a map stores (dims dcrit_combination, dcrit_phi: named after the catalogue's
-    combinations, in the order the critical distances were computed)."""
+    combinations, in the order the critical distances were computed). A chain's
+    (dims stop, combination, point): one row per stop and product, "stop s: name"."""
+    if "stop" in ds["d_crit"].dims:
+        axis, points = str(ds.attrs.get("axis", "")), [float(p) for p in ds["point"].values]
+        names = [str(n) for n in ds["combination_label"].values]
+        return {f"stop {int(s)}: {name}": {"phi": points, "axis": axis,
+                                           "d_crit": [_plain(float(v)) for v in row]}
+                for s, per_stop in zip(ds["stop"].values, ds["d_crit"].values, strict=True)
+                for name, row in zip(names, per_stop, strict=True)}
     if "combination_label" in ds:
         names, phi = [str(n) for n in ds["combination_label"].values], ds["phi"].values
         values = ds["d_crit"].transpose("combination", "phi").values

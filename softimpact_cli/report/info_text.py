@@ -139,17 +139,19 @@ def _dcrit_table(dcrit: dict) -> list[str]:
     """All values when there are few phases, else the range over phi with where."""
     width = max([len(n) for n in dcrit] + [11])
     phis = next(iter(dcrit.values()))["phi"] if dcrit else []
+    axis = next(iter(dcrit.values())).get("axis", "phi") if dcrit else "phi"
     if len(phis) <= 6:
-        out = [f"{'d_crit':{width}s}  " + "  ".join(f"{'phi=' + f'{p:.4g}':>10s}"
+        out = [f"{'d_crit':{width}s}  " + "  ".join(f"{axis + '=' + f'{p:.4g}':>10s}"
                                                     for p in phis)]
         for name, r in dcrit.items():
             out.append(f"{name:{width}s}  " + "  ".join(
                 f"{'-' if v is None else f'{v:.4f}':>10s}" for v in r["d_crit"]))
         return out
-    head = f"d_crit over {len(phis)} phases"
+    head = f"d_crit over {len(phis)} values of {axis}"
     width = max(width, len(head))
+    at = f"at {axis}"
     out = [f"{head:{width}s}  "
-           f"{'min':>9s} {'at phi':>8s}  {'max':>9s} {'at phi':>8s}"]
+           f"{'min':>9s} {at:>8s}  {'max':>9s} {at:>8s}"]
     for name, r in dcrit.items():
         v = np.array([np.nan if x is None else x for x in r["d_crit"]], dtype=float)
         if not np.isfinite(v).any():

@@ -134,9 +134,9 @@ def test_example_chain_prints_the_commented_scene():
 @pytest.mark.parametrize("kind, extra, message", [
     ("basins", "", "[analysis] kind = 'basins': not yet for model = \"chain\" (its attractors "
                    "are named from one body's catalogue"),
-    ("dcrit", "", "[analysis] kind = 'dcrit': not yet for model = \"chain\" (it follows a "
-                  "pair's one stop, x1 - x2 - d); a chain runs kind 'trajectory' or "
-                  "'lyapunov'"),
+    ("continuation", "", "[analysis] kind = 'continuation': not yet for model = \"chain\" (it "
+                         "follows a pair's one stop, x1 - x2 - d); a chain runs kind "
+                         "'trajectory' or 'lyapunov' or 'dcrit'"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
                                           "a state"),
 ])

@@ -1,0 +1,81 @@
+"""kind = "dcrit" on a chain: [grid] one parameter by its name, refusals in one line, the
+result's info table and figure (the critical values themselves: tests/analysis/
+test_chain_dcrit.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from softimpact_cli import plot
+from softimpact_cli.config import ConfigError
+from softimpact_cli.kinds.results import describe, format_summary
+from softimpact_cli.kinds.run import run_scene
+from softimpact_cli.kinds.scene import parse_scene
+
+CHAIN = """\
+[system]
+model = "chain"
+bodies = 3
+k2 = 0.05
+F = 1.5
+w = 1.4
+phi = [0.0, "5*pi/8", "5*pi/4"]
+
+[[stop]]
+between = [1, 2]
+d = 2.0
+
+[[stop]]
+body = 3
+wall = -3.0
+side = "left"
+
+[analysis]
+kind = "dcrit"
+samples = 128
+
+[catalogue]
+grid = 3
+random = 0
+"""
+
+
+def test_the_grid_names_a_parameter_dotted_or_quoted():
+    dotted = parse_scene(CHAIN + '[grid]\nphi.3 = {start = 0.0, stop = "pi", num = 3}\n')
+    quoted = parse_scene(CHAIN + '[grid]\n"phi.3" = [0.0, "pi/2", "pi"]\n')
+    for scene in (dotted, quoted):
+        assert scene.analysis.axis == "phi.3"
+        np.testing.assert_allclose(scene.analysis.phis, [0.0, np.pi / 2, np.pi])
+    assert parse_scene(CHAIN).analysis.axis == "w"  # no [grid]: the scene's point
+
+
+@pytest.mark.parametrize("grid, message", [
+    ('"stop.1.d" = [1.0, 2.0]', "[grid] stop.1.d: a stop's own parameters do not change a "
+                                "non-impacting solution"),
+    ("F.7 = [1.0]", "[grid] F.7: is not a parameter dcrit can sweep"),
+    ("F.1 = [1.0]\nw = [1.2]", "[grid]: dcrit sweeps one parameter; got 2 (F.1, w)"),
+    ("m.2 = [0.0]", "[grid] m.2: must be > 0, got 0.0"),
+])
+def test_bad_axes_are_refused_in_one_line(grid, message):
+    with pytest.raises(ConfigError) as err:
+        parse_scene(CHAIN + f"[grid]\n{grid}\n", "s.toml")
+    assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_traces_are_a_pairs():
+    with pytest.raises(ConfigError, match="traces: x1 - x2 traces are a pair's"):
+        parse_scene(CHAIN.replace("samples = 128", 'traces = ["pi"]'))
+
+
+def test_a_chain_dcrit_runs_and_is_described_and_drawn(tmp_path):
+    scene = parse_scene(CHAIN + '[grid]\n"F.2" = [1.0, 1.5]\n'
+                        + f'[output]\npath = "{tmp_path / "d.h5"}"\n')
+    ds = run_scene(scene)
+    assert ds["d_crit"].dims == ("stop", "combination", "point")
+    assert ds.sizes["stop"] == 2 and list(ds["point"].values) == [1.0, 1.5]
+    assert ds.sizes["combination"] >= 1 and np.isfinite(ds["d_crit"].values).any()
+    text = format_summary(describe(ds), ds)
+    assert "F.2=1" in text and "stop 2: 1:P1^1" in text
+    fig = plot.dcrit(ds)
+    assert len(fig.axes) == 2
