@@ -209,3 +209,11 @@ def chain_critical_gaps(system: System, values: dict, states: np.ndarray, axis: 
                 "point": ("point", np.asarray(points, dtype=float))},
         attrs={"axis": axis},
     )
+
+
+def chain_products(system: System, values: dict, states: np.ndarray,
+                   search: IntegratorSettings = TIGHT) -> list[Product]:
+    """The chain's non-impacting solutions at ``values``: the products of its bodies'
+    attractors, each body searched alone from ``states`` (N, 2)."""
+    return products([body_catalogue(body_problem(system, values, i, search), states)[0]
+                     for i in range(1, system.bodies + 1)])

@@ -10,9 +10,12 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.bifurcation import bifurcation_dataset, d_values
-from ..analysis.catalogue import catalogue_dataset
+from ..analysis.catalogue import catalogue_dataset, sample_states
+from ..analysis.chain_bifurcation import chain_bifurcation_dataset
+from ..analysis.chain_dcrit import chain_products
 from ..analysis.labels import parse_label
 from ..config.axes import allowed_axes
+from ..config.chain_scene import CHAIN
 from ..config.reader import ConfigError, positive
 from ..config.sweep import read_catalogue
 from ..report.compare import bifurcation_comparison_text, compare_bifurcations
@@ -39,7 +42,32 @@ class BifurcationAnalysis:
     parameter: str = "d"
 
 
+def _read_chain(sec, ctx) -> BifurcationAnalysis:
+    """A chain: any parameter by its name (default the first stop's gap or wall)."""
+    parameters = {p.name: p for p in ctx.system.parameters}
+    stop_keys = [n for n in parameters if n.startswith("stop.1.")]
+    parameter = sec.choice("parameter", stop_keys[0] if stop_keys else "w", tuple(parameters))
+    start = sec.number("start", None)
+    stop = sec.number("stop", None)
+    step = sec.number("step", None, positive)
+    for key, v in (("start", start), ("stop", stop)):
+        problem = parameters[parameter].check(v)
+        if problem:
+            raise sec.fail(key, f"{problem} (a value of {parameter}), got {v!r}")
+    if start == stop:
+        raise sec.fail("stop", "must differ from start")
+    if abs(stop - start) / step > MAX_STEPS:
+        raise sec.fail("step", f"{abs(stop - start) / step:.0f} steps; at most {MAX_STEPS}")
+    raw = sec.raw("branches", [])
+    if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
+        raise sec.fail("branches", "must be a list of product names like "
+                                   f"'1:P1^1 2:P1-0^2 3:P1-0^1', got {raw!r}")
+    return BifurcationAnalysis("bifurcation", start, stop, step, tuple(raw), parameter)
+
+
 def read(sec, ctx) -> BifurcationAnalysis:
+    if ctx.system.model == CHAIN:
+        return _read_chain(sec, ctx)
     allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
     if ctx.system.bodies != 2 and not sec.has("parameter"):
         raise sec.fail("kind", "bifurcation along d needs a pair ([system] bodies = 2); one "
@@ -88,6 +116,8 @@ def run(scene, progress=None, **_):
     catalogue attached."""
     a = scene.analysis
     values = dict(scene.values)
+    if scene.system.model == CHAIN:
+        return run_chain(scene, progress)
     cat = scene_catalogue(scene)
     branches = list(a.branches) or list(cat.names)
     for b in branches:
@@ -104,6 +134,26 @@ def run(scene, progress=None, **_):
     return ds
 
 
+def run_chain(scene, progress=None):
+    """A chain: its non-impacting products (each body searched from [catalogue]) followed
+    along the scene's parameter."""
+    a, c = scene.analysis, scene.catalogue
+    found = chain_products(scene.system, dict(scene.values),
+                           sample_states(c.box, c.grid, c.random, c.seed))
+    names = [p.name for p in found]
+    for b in a.branches:
+        if b not in names:
+            raise ConfigError(f"{scene.source}: [analysis] branches: {b!r} is not a "
+                              f"non-impacting product of the chain ({', '.join(names)})")
+    chosen = [p for p in found if not a.branches or p.name in a.branches]
+    tick = progress(len(chosen)) if progress else None
+    ds = chain_bifurcation_dataset(scene.system, dict(scene.values), scene.integrator,
+                                   chosen, a.parameter, d_values(a.start, a.stop, a.step),
+                                   tick)
+    ds.attrs["forcing_period"] = forcing_period(scene.values)
+    return ds
+
+
 def plan(scene, workers=None, chunk_size=None) -> str:
     a = scene.analysis
     branches = f"{len(a.branches)} branches" if a.branches else \
@@ -115,6 +165,8 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 def check(scene, sample=None, seed=None, result=None) -> dict:
     """``softimpact check``: the destruction points at the scene's settings and at
     tightened ones with half the d step."""
+    if scene.system.model == CHAIN:
+        raise ConfigError("softimpact check: not yet for a chain's bifurcation")
     start = time.perf_counter()
     a = run(scene)
     mid = time.perf_counter()
@@ -133,6 +185,9 @@ def check(scene, sample=None, seed=None, result=None) -> dict:
 
 def info_lines(ds) -> list[str]:
     p = str(ds.attrs.get("parameter", "d"))
+    if "step" in ds.coords and p not in ds.coords:  # a chain's (dim step)
+        d = ds["step"].values
+        return [f"{p:28s} {d[0]:.6g} -> {d[-1]:.6g} ({d.size} steps)"]
     if p not in ds.coords:
         return []
     d = ds[p].values

@@ -46,15 +46,14 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
-CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit")
+CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation")
 _PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
                "combinations (L/R names); a chain's are not named yet")
 _PAIR_GAP = "it follows a pair's one stop, x1 - x2 - d"
 CHAIN_REFUSALS = {
     "catalogue": _PAIR_NAMES, "basins": _PAIR_NAMES, "stability": _PAIR_NAMES,
     "map": _PAIR_NAMES, "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
-    "fatal_shock": _PAIR_NAMES, "bifurcation": _PAIR_GAP,
-    "design": _PAIR_GAP, "continuation": _PAIR_GAP,
+    "fatal_shock": _PAIR_NAMES, "design": _PAIR_GAP, "continuation": _PAIR_GAP,
 }
 
 

@@ -25,7 +25,7 @@ from ..analysis.stability import basin_stability
 from ..report.verification import verification_line
 from ..store.layout import memory_order
 from .basins_figure import draw_basins
-from .bifurcation_figure import draw_bifurcation
+from .bifurcation_figure import draw_bifurcation, draw_chain_bifurcation
 from .catalogue_figure import draw_catalogue
 from .common import (  # noqa: F401  (the helpers the figures share, named here too)
     DEFAULT_DPI,
@@ -163,7 +163,10 @@ def dcrit(ds, ax=None, *, combination: str | None = None) -> Figure:
 def bifurcation(ds, ax=None) -> Figure:
     """Section displacements of the left, then the right body against d."""
 
-    return draw_bifurcation(_expect(ds, "bifurcation"), ax)
+    ds = _expect(ds, "bifurcation")
+    if "body" in ds.dims:  # a chain's: a panel per body
+        return draw_chain_bifurcation(ds, ax)
+    return draw_bifurcation(ds, ax)
 
 
 def map(ds, ax=None) -> Figure:  # noqa: A001 (named after the kind, as the CLI's `plot map`)

@@ -125,3 +125,33 @@ def draw_bifurcation(ds, ax=None):
                  f"from {d[0]:g} to {d[-1]:g} (step {step:g}), {start_text(ds)}\n"
                  + parameter_text(ds, exclude=(p,)), fontsize=9)
     return root_figure(fig)
+
+
+def draw_chain_bifurcation(ds, ax=None):
+    """A chain's (dims branch, step, point, body): one panel per body, its section
+    displacements against the followed parameter, a colour per branch (filled while on
+    it, hollow after), the destruction points as dashed lines."""
+    bodies = [int(b) for b in ds["body"].values]
+    container, panels = place_panels(ax, (1, len(bodies)), [(0, k) for k in range(len(bodies))],
+                                     (3.6 * len(bodies), 3.4), sharex=True)
+    p = str(ds.attrs.get("parameter", ""))
+    steps = ds["step"].values
+    names = [str(n) for n in ds["branch_name"].values]
+    for k, panel in enumerate(panels):
+        for i, name in enumerate(names):
+            colour = f"C{i % 10}"
+            alive = ds["alive"].values[i].astype(bool)
+            x = ds["section_x"].values[i, :, :, k]
+            for mask, face in ((alive, colour), (~alive, "none")):
+                s = np.repeat(steps[mask], x.shape[1])
+                panel.scatter(s, x[mask].ravel(), s=6, facecolors=face, edgecolors=colour,
+                              linewidths=0.6, label=name if face != "none" and k == 0 else None)
+            at = ds["destroyed_at"].values[i]
+            if np.isfinite(at):
+                panel.axvline(at, color=colour, ls="--", lw=0.8)
+        panel.set_xlabel(p)
+        panel.set_ylabel(f"x{bodies[k]}")
+        panel_letter(panel, k)
+    if names:
+        panels[0].legend(fontsize="x-small")
+    return root_figure(container)

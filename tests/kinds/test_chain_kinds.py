@@ -1,6 +1,6 @@
-"""kind = "dcrit" on a chain: [grid] one parameter by its name, refusals in one line, the
-result's info table and figure (the critical values themselves: tests/analysis/
-test_chain_dcrit.py)."""
+"""Kinds on a chain: dcrit ([grid] one parameter by its name) and bifurcation (any
+parameter); refusals in one line, the results' info tables and figures (the numbers
+themselves: tests/analysis/test_chain_dcrit.py and test_chain_bifurcation.py)."""
 
 from __future__ import annotations
 
@@ -79,3 +79,34 @@ def test_a_chain_dcrit_runs_and_is_described_and_drawn(tmp_path):
     assert "F.2=1" in text and "stop 2: 1:P1^1" in text
     fig = plot.dcrit(ds)
     assert len(fig.axes) == 2
+
+
+BIFURCATION = CHAIN.replace('kind = "dcrit"\nsamples = 128',
+                            'kind = "bifurcation"\nparameter = "stop.1.d"\nstart = 12.0\n'
+                            'stop = 8.0\nstep = 1.0').replace("d = 2.0", "d = 12.0")
+
+
+@pytest.mark.parametrize("change, message", [
+    ('parameter = "stop.3.d"', "[analysis] parameter: must be one of"),
+    ('parameter = "m.2"\nstart = -1.0', "[analysis] start: must be > 0 (a value of m.2), "
+                                         "got -1.0"),
+])
+def test_a_chain_bifurcation_refuses_in_one_line(change, message):
+    scene = BIFURCATION.replace('parameter = "stop.1.d"\nstart = 12.0', change)
+    with pytest.raises(ConfigError) as err:
+        parse_scene(scene, "s.toml")
+    assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_a_chain_bifurcation_runs_and_is_described_and_drawn(tmp_path):
+    scene = parse_scene(BIFURCATION + f'[output]\npath = "{tmp_path / "b.h5"}"\n')
+    assert scene.analysis.parameter == "stop.1.d"
+    ds = run_scene(scene)
+    assert ds["section_x"].dims == ("branch", "step", "point", "body")
+    assert list(ds["step"].values) == [12.0, 11.0, 10.0, 9.0, 8.0]
+    text = format_summary(describe(ds), ds)
+    assert "stop.1.d" in text and "1:P1^1" in text
+    assert len(plot.bifurcation(ds).axes) == 3
+    with pytest.raises(ConfigError, match="branches: 'L1\\^1' is not a non-impacting product"):
+        run_scene(parse_scene(BIFURCATION.replace('step = 1.0', 'step = 1.0\nbranches = ["L1^1"]')
+                              + f'[output]\npath = "{tmp_path / "c.h5"}"\n'))
