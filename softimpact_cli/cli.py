@@ -15,7 +15,7 @@ import click
 
 from .cli_options import KindsHelp, cells, dpi_option, plot_option, run_options
 from .cli_terminal import console, exit_with, interruptible, library, quick_exit, user_errors
-from .config import ConfigError, check_writable
+from .config import ConfigError
 from .kinds import KINDS, example_scene
 from .kinds.check import check_scene, check_text, over_limit
 from .kinds.scene import load_scene
@@ -146,14 +146,10 @@ def check(scene, sample, seed, as_json, fail_over):
                    "bifurcation).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 @user_errors
-def compare(result_a, result_b, max_label_change, max_share_change, max_d_change, as_json):
+def compare(result_a, result_b, as_json, **limits):
     """Differences of RESULT_B from RESULT_A (same scene layout): labels, shares, d."""
-    lib = library()
-    report = lib.compare_results(lib.read_result(result_a), lib.read_result(result_b),
-                                 result_a, result_b)
-    why = lib.limits_exceeded(report, max_label_change, max_share_change, max_d_change)
-    click.echo(json.dumps({**report, "failed": why}, indent=2) if as_json
-               else lib.format_comparison(report))
+    text, why = library().compare_files(result_a, result_b, as_json, **limits)
+    click.echo(text)
     if why:
         click.echo(f"softimpact: compare: {'; '.join(why)}", err=True)
         sys.exit(1)
@@ -172,7 +168,7 @@ def compare(result_a, result_b, max_label_change, max_share_change, max_d_change
 @click.option("--wada-tol", type=click.FloatRange(0, 1, max_open=True), default=0.05,
               show_default=True, help="Largest mismatch share still called Wada.")
 @user_errors
-def measure(result, output, overwrite, box_sizes, radii, wada_radius, wada_tol):
+def measure(result, output, **options):
     """How fractal the basins of RESULT (a basins result over a plane) are, per plane:
     basin entropy S_b, S_bb against the box size with the ln 2 criterion, the uncertainty
     exponent alpha and boundary dimension D = 2 - alpha with 95% fit intervals, and the
@@ -184,12 +180,7 @@ def measure(result, output, overwrite, box_sizes, radii, wada_radius, wada_tol):
       softimpact sweep configs/figures/fig09_bilinear_single_basins.toml -o fig09.h5
       softimpact measure fig09.h5 -o fig09_fractality.h5
     """
-    lib = library()
-    check_writable(output, "command line", "-o/--output")
-    ds = lib.measure_result(result, output, box_sizes=box_sizes, radii=radii,
-                        wada_radius=wada_radius, wada_tol=wada_tol, overwrite=overwrite)
-    click.echo("\n".join(lib.fractality_lines(ds)))
-    click.echo(f"fractality -> {output}")
+    click.echo(library().measure_to_file(result, output, **options))
 
 
 @main.command()

@@ -55,9 +55,8 @@ from .sweep.verification import OVER, VERIFIED
 
 __all__ = [
     "Console", "RunOptions", "SweepOptions", "announce_compilation", "cache_folder",
-    "cache_state", "clear", "compare_results", "design_scene", "draw_result",
-    "format_comparison", "fractality_lines", "info_text", "limits_exceeded",
-    "measure_result", "open_result", "read_result", "reproduce_to_file", "sweep_scene",
+    "cache_state", "clear", "compare_files", "design_scene", "draw_result", "info_text",
+    "measure_to_file", "open_result", "read_result", "reproduce_to_file", "sweep_scene",
 ]
 
 
@@ -290,6 +289,29 @@ def _shares_against_stability(ds, result: str, compare: str, as_json: bool) -> s
             lines.append(f"  {name:16s} {v['plane']:7.3f} {v['stability']:7.3f}  "
                          f"[{ci[0]:.3f}, {ci[1]:.3f}]")
     return "\n".join(lines)
+
+
+def compare_files(result_a: str, result_b: str, as_json: bool = False,
+                  **limits: float | None) -> tuple[str, list[str]]:
+    """``softimpact compare``: the differences of ``result_b`` from ``result_a`` as text
+    (JSON with ``as_json``), and the ``limits`` they exceed (``max_label_change``,
+    ``max_share_change``, ``max_d_change``; None: no limit), each said in a few words."""
+    report = compare_results(read_result(result_a), read_result(result_b), result_a,
+                             result_b)
+    why = limits_exceeded(report, limits.get("max_label_change"),
+                          limits.get("max_share_change"), limits.get("max_d_change"))
+    text = (json.dumps({**report, "failed": why}, indent=2) if as_json
+            else format_comparison(report))
+    return text, why
+
+
+def measure_to_file(result: str, output: str, **options) -> str:
+    """``softimpact measure``: the fractality of a basins result (``options`` of
+    ``api.measure``: box_sizes, radii, wada_radius, wada_tol, overwrite) written to
+    ``output``; returns what it found, a line per plane and the file written."""
+    check_writable(output, "command line", "-o/--output")
+    ds = measure_result(result, output, **options)
+    return "\n".join([*fractality_lines(ds), f"fractality -> {output}"])
 
 
 def draw_result(result: str, output: str, dpi: int, kind: str, draw,

@@ -52,6 +52,11 @@ def test_sweep_scene_writes_through_its_console_and_returns_the_strict_status(tm
     assert printed.exit_code == 0 and printed.output == commands.info_text(str(out)) + "\n"
     assert json.loads(commands.info_text(str(out), as_json=True))["analysis"] == "basins"
 
+    # `compare` prints what compare_files returns, and fails on the limits it names
+    text, why = commands.compare_files(str(out), str(out), max_label_change=0.0)
+    assert why == [] and text == CliRunner().invoke(main, ["compare", str(out), str(out)]
+                                                    ).output.rstrip("\n")
+
 
 def test_bad_options_are_refused_before_anything_runs(tmp_path):
     out = tmp_path / "r.h5"
