@@ -283,17 +283,16 @@ def _impacting_end_and_fall(st, runs, name: str) -> Measure:
     return m
 
 
-def _compact(name: str) -> str:
-    """A combination's name in a check's name: "L1^2 R1-0^2" -> "L12R102"."""
-    return name.replace("^", "").replace(" ", "").replace("-", "")
-
-
 # the figure 7 branches: where each is destroyed, and where its impacting stretch ends
-for _name in ("L1^2 R1-0^2", "L1^1 R1-0^2", "L1^2 R1-0^1", "L1^1 R1-0^1"):
-    CHECKS[f"destroyed_{_compact(_name)}"] = partial(_destroyed, name=_name)
-CHECKS["impacting_end_L12R102"] = partial(_impacting_end, name="L1^2 R1-0^2")
-for _name in ("L1^1 R1-0^2", "L1^2 R1-0^1"):
-    CHECKS[f"impacting_end_{_compact(_name)}"] = partial(_impacting_end_and_fall, name=_name)
+CHECKS.update({
+    "destroyed_L12R102": partial(_destroyed, name="L1^2 R1-0^2"),
+    "destroyed_L11R102": partial(_destroyed, name="L1^1 R1-0^2"),
+    "destroyed_L12R101": partial(_destroyed, name="L1^2 R1-0^1"),
+    "destroyed_L11R101": partial(_destroyed, name="L1^1 R1-0^1"),
+    "impacting_end_L12R102": partial(_impacting_end, name="L1^2 R1-0^2"),
+    "impacting_end_L11R102": partial(_impacting_end_and_fall, name="L1^1 R1-0^2"),
+    "impacting_end_L12R101": partial(_impacting_end_and_fall, name="L1^2 R1-0^1"),
+})
 
 
 @check("falls_to_L12R102")

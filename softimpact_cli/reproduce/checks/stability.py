@@ -92,9 +92,12 @@ def _plane_shares(runs, c_c: float, groups: list[str]) -> Measure:
 
 
 # figure 14 (c) at c_c = 10 and (d) at c_c = 2: the plane's shares and the 4-D ones
-for _panel, _c_c, _groups in (("fig14c", 10.0, DUFFING_C), ("fig14d", 2.0, DUFFING_D)):
-    for _key, _measure in (("plane_shares", _plane_shares), ("menck_shares", _menck)):
-        CHECKS[f"{_panel}_{_key}"] = partial(_panel_check, _measure, _c_c, _groups)
+CHECKS.update({
+    "fig14c_plane_shares": partial(_panel_check, _plane_shares, 10.0, DUFFING_C),
+    "fig14d_plane_shares": partial(_panel_check, _plane_shares, 2.0, DUFFING_D),
+    "fig14c_menck_shares": partial(_panel_check, _menck, 10.0, DUFFING_C),
+    "fig14d_menck_shares": partial(_panel_check, _menck, 2.0, DUFFING_D),
+})
 
 
 @check("fig14a_plane_share")
