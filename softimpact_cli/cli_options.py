@@ -10,6 +10,8 @@ from .kinds import help_lines
 
 
 def scheduler(ctx, param, value):
+    """--scheduler: a Dask scheduler's address (tcp://, tls://, inproc://, ucx://) or
+    local:N (a LocalCluster of N workers started for the run)."""
     if value is None:
         return None
     if value.startswith("local:"):
@@ -66,13 +68,13 @@ def cells(ctx, param, value):
     if value is None:
         return None
     try:
-        cells = tuple(int(v) for v in value.split(","))
+        sizes = tuple(int(v) for v in value.split(","))
     except ValueError:
         raise click.BadParameter(f"a comma-separated list of whole numbers of cells, got "
                                  f"{value!r}") from None
-    if not cells or min(cells) < 1:
+    if not sizes or min(sizes) < 1:
         raise click.BadParameter(f"whole numbers of cells >= 1, got {value!r}")
-    return cells
+    return sizes
 
 
 def dpi_option() -> click.Option:
