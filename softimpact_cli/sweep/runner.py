@@ -13,6 +13,8 @@ import xarray as xr
 
 from ..analysis.catalogue import Catalogue, catalogue_dataset, extend_catalogue, require_attractors
 from ..analysis.critical_distance import critical_distance, uncoupled_pair
+from ..analysis.engine import Problem
+from ..analysis.impacting import ImpactingOrbits
 from ..config import ConfigError, Scene, forcing_period
 from ..config.axes import catalogue_axes, catalogue_key
 from ..store import open_result
@@ -26,6 +28,7 @@ from ..store.sweep_store import (
     SweepStore,
     result_problem,
 )
+from ..systems import get_system
 from ..systems.base import check_bodies
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
@@ -173,6 +176,26 @@ def keep_first_orbits(orbits: dict, found: dict) -> None:
             orbits[key] = (flat, pts)
 
 
+def impacting_numbering(context: SweepContext) -> ImpactingOrbits:
+    """The result's numbering of impacting orbits (``analysis.impacting``): give it the
+    chunks in flat order (``merge_chunk``)."""
+    system = get_system(context.model, context.bodies)
+    return ImpactingOrbits(
+        lambda point: Problem(system, context.point_values(point)[0], context.integrator),
+        context.label_tol)
+
+
+def merge_chunk(arrays: dict, orbits: dict, numbering: ImpactingOrbits, context: SweepContext,
+                start: int, stop: int, chunk: dict) -> None:
+    """A chunk's arrays into the result's flat ``arrays`` and its orbits into ``orbits``,
+    its impacting orbits renumbered over the result. Chunks in flat order."""
+    for key in RESULT_FIELDS:
+        arrays[key][start:stop] = chunk[key]
+    found = numbering.merge_chunk(arrays["label"][start:stop], start,
+                                  context.states.shape[0], chunk["orbits"])
+    keep_first_orbits(orbits, found)
+
+
 def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: dict,
                      recurrent: list | None = None) -> xr.Dataset:
     """The sweep's dataset from its flat arrays (RESULT_FIELDS, plan order) and orbits:
@@ -237,7 +260,7 @@ def _bad_parts_note(bad: dict[int, str]) -> str:
             f"({'; '.join(shown)}); recomputing {'it' if len(bad) == 1 else 'them'}")
 
 
-def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
+def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity, context: SweepContext
               ) -> tuple[dict, dict, dict[float, float], list]:
     """(flat arrays, orbits, {session start: its last part written}, recurrent
     trajectories) from verified parts. A part that fails verification is deleted and
@@ -246,6 +269,7 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
     orbits: dict = {}
     recurrent: list = []
     sessions: dict[float, float] = {}
+    numbering = impacting_numbering(context)
     for index in range(plan.n_chunks):
         start, stop = plan.chunk(index)
         try:
@@ -253,9 +277,7 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
         except DamagedPart as why:
             store.drop_chunk(index)
             raise DamagedPart(f"chunk {index}: {why}") from None
-        for key in RESULT_FIELDS:
-            arrays[key][start:stop] = chunk[key]
-        keep_first_orbits(orbits, chunk["orbits"])
+        merge_chunk(arrays, orbits, numbering, context, start, stop, chunk)
         recurrent += unpack(chunk)
         first, last = float(meta["session_started"]), float(meta["written"])
         sessions[first] = max(sessions.get(first, first), last)
@@ -380,7 +402,7 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
         if len(store.done() & set(range(plan.n_chunks))) < plan.n_chunks:
             continue
         try:
-            arrays, orbits, sessions, recurrent = _assemble(store, plan, identity)
+            arrays, orbits, sessions, recurrent = _assemble(store, plan, identity, context)
             break
         except DamagedPart as why:
             echo(f"{why}; recomputing it")
