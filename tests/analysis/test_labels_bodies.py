@@ -153,3 +153,13 @@ def test_codes_hold_many_bodies_names(labels, offset):
         assert special == (offset + i >= codes.CATALOGUE_WIDTH)
         assert not codes.IMPACTING_BASE <= code < codes.NUMBERED_IMPACTING_BASE + 10**6
     assert np.int32(catalogue_code(2**31 - 1 - codes.EXTENDED_CATALOGUE_BASE)) > 0
+
+
+def test_basin_stability_sums_count_many_bodies_and_numbered_impacting_orbits():
+    from softimpact_cli.analysis.stability import groups
+
+    names = ["B1:P1^1 B2:P1-0^1 B3:P1-0^2", "impacting P1", "impacting P1^2", "unresolved"]
+    out = groups(names)
+    assert out["non-impacting (sum)"] == [0]
+    assert out["impacting (all)"] == [1, 2]
+    assert out["impacting P1^2"] == [2]
