@@ -19,7 +19,8 @@ from ..analysis.impacting import impacting_number
 from ..analysis.labels import impacting_code, name_of
 from ..config import IntegratorSettings, Scene, forcing_period
 from .executors import LocalExecutor
-from .runner import impacting_numbering, prepare_catalogues, sweep_context
+from .merge import impacting_numbering
+from .runner import prepare_catalogues, sweep_context
 from .second_stage import relabel, unpack
 
 

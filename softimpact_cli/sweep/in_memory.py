@@ -22,8 +22,9 @@ from ..config.sweep import Grid, InitialConditions
 from ..store.provenance import history_line, provenance
 from .chunks import RESULT_FIELDS
 from .executors import make_executor
+from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, SweepSettings, chunk_size_for
-from .runner import impacting_numbering, labelled_dataset, merge_chunk, prepare_inputs
+from .runner import labelled_dataset, prepare_inputs
 from .second_stage import progress_codes, unpack
 
 

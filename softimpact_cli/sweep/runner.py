@@ -13,8 +13,6 @@ import xarray as xr
 
 from ..analysis.catalogue import Catalogue, catalogue_dataset, extend_catalogue, require_attractors
 from ..analysis.critical_distance import critical_distance, uncoupled_pair
-from ..analysis.engine import Problem
-from ..analysis.impacting import ImpactingOrbits
 from ..config import ConfigError, Scene, forcing_period
 from ..config.axes import catalogue_axes, catalogue_key
 from ..store import open_result
@@ -28,10 +26,10 @@ from ..store.sweep_store import (
     SweepStore,
     result_problem,
 )
-from ..systems import get_system
 from ..systems.base import check_bodies
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
+from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, chunk_size_for
 from .result import sweep_dataset
 from .second_stage import progress_codes, relabel, unpack
@@ -166,34 +164,6 @@ def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
     context = sweep_context(scene, catalogues, names, t0_per_sample)
     return SweepInputs(catalogues, names, next(iter(catalogues.values())), t0_per_sample,
                        context)
-
-
-def keep_first_orbits(orbits: dict, found: dict) -> None:
-    """Merge a chunk's representative orbits into ``orbits``: per (grid point, code) the
-    one of the lowest flat index, whatever order the chunks finished in."""
-    for key, (flat, pts) in found.items():
-        if key not in orbits or flat < orbits[key][0]:
-            orbits[key] = (flat, pts)
-
-
-def impacting_numbering(context: SweepContext) -> ImpactingOrbits:
-    """The result's numbering of impacting orbits (``analysis.impacting``): give it the
-    chunks in flat order (``merge_chunk``)."""
-    system = get_system(context.model, context.bodies)
-    return ImpactingOrbits(
-        lambda point: Problem(system, context.point_values(point)[0], context.integrator),
-        context.label_tol)
-
-
-def merge_chunk(arrays: dict, orbits: dict, numbering: ImpactingOrbits, context: SweepContext,
-                start: int, stop: int, chunk: dict) -> None:
-    """A chunk's arrays into the result's flat ``arrays`` and its orbits into ``orbits``,
-    its impacting orbits renumbered over the result. Chunks in flat order."""
-    for key in RESULT_FIELDS:
-        arrays[key][start:stop] = chunk[key]
-    found = numbering.merge_chunk(arrays["label"][start:stop], start,
-                                  context.states.shape[0], chunk["orbits"])
-    keep_first_orbits(orbits, found)
 
 
 def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: dict,
