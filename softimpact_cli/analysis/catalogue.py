@@ -304,6 +304,17 @@ def combinations(left: list[Attractor], right: list[Attractor]) -> list[Combinat
     return out
 
 
+def joint_orbit(chosen, shifts_) -> np.ndarray:
+    """(lcm of the periods, 2n) section points of bodies on attractors ``chosen`` (one per
+    body, canonical order) with shifts ``shifts_`` (``labels.all_shifts``), in time
+    order from the section where each body i sits at its index s_i. For a pair, the
+    orbit :func:`combinations` gives."""
+    q = lcm(*(a.period for a in chosen))
+    return np.array([np.concatenate([a.points[(s + i) % a.period]
+                                     for a, s in zip(chosen, shifts_, strict=True)])
+                     for i in range(q)])
+
+
 def combination_names(per_body) -> tuple[str, ...]:
     """The name of every combination of one attractor per body with every canonical
     shift tuple (``labels.all_shifts``): attractors in each body's order (the first body's

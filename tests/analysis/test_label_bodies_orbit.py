@@ -112,3 +112,23 @@ def test_unmatched_and_wrong_width():
     assert label_orbit(cat, short, impacting=False).kind == "unmatched"
     with pytest.raises(ValueError, match="an orbit of 4 state variables, a catalogue of 3"):
         label_orbit(cat, orbit[:, :4], impacting=False)
+
+
+@pytest.mark.parametrize("n", [2, 3, 4])
+def test_every_combination_orbit_is_named_by_its_own_name(n):
+    """joint_orbit of each (attractors, canonical shifts) is labelled with exactly the name
+    combination_names lists for it, in the same order: names and orbits agree."""
+    from softimpact_cli.analysis.catalogue import joint_orbit
+    from softimpact_cli.analysis.labels import all_shifts
+
+    cat = catalogue(n)
+    named = []
+    for chosen in product(BODY, repeat=n):
+        for s in all_shifts([a.period for a in chosen]):
+            named.append(label_orbit(cat, joint_orbit(chosen, s), impacting=False).name)
+    assert tuple(named) == cat.names
+    if n == 2:
+        pair = [c.orbit for c in combinations(list(BODY), list(BODY))]
+        ours = [joint_orbit((c.left, c.right), (0, c.shift))
+                for c in combinations(list(BODY), list(BODY))]
+        assert all(np.array_equal(a, b) for a, b in zip(pair, ours, strict=True))
