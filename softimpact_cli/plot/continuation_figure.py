@@ -103,7 +103,7 @@ def draw_continuation(ds, ax=None):
     stable = ds["stable"].values.astype(bool)
     impacting = ds["impacting"].values.astype(bool)
     mod = np.hypot(ds["multiplier_re"].values, ds["multiplier_im"].values)
-    if "sweep" in ds.dims:
+    if ds.sizes.get("sweep", 0):  # a scene may ask for no brute-force sweep
         for i in range(ds.sizes["sweep"]):
             up = str(ds["sweep_direction"].values[i]) == "up"
             p = ds["sweep_parameter"].values[i]

@@ -92,3 +92,15 @@ def test_crowded_event_labels_stay_inside_their_axes(fold):
             for b in boxes[i + 1:]:
                 overlap = (min(a.x1, b.x1) - max(a.x0, b.x0), min(a.y1, b.y1) - max(a.y0, b.y0))
                 assert not (overlap[0] > 0.5 and overlap[1] > 0.5), (a, b)
+
+
+def test_no_brute_force_legend_without_sweeps(fold):
+    """A scene without brute-force sweeps (the pitchfork's: a start on the symmetric orbit
+    stays on it) stores an empty sweep dimension: no legend entry for sweeps not drawn."""
+    def legend(ds):
+        return [t.get_text() for t in si.plot.continuation(ds).axes[0].get_legend().get_texts()]
+
+    assert fold.sizes["sweep"] > 0
+    assert "brute force, up" in legend(fold)
+    without = fold.isel(sweep=slice(0, 0))
+    assert not [t for t in legend(without) if t.startswith("brute force")]
