@@ -158,7 +158,7 @@ def _body(sec: Section, key: str, n: int) -> int:
 def _side(sec: Section) -> str:
     if not sec.has("side"):
         raise sec.fail("side", "is required: \"left\" or \"right\"")
-    return sec.choice("side", "right", tuple(SIDES))
+    return sec.choice("side", None, tuple(SIDES))
 
 
 def _read_kinks(source: str, doc: Mapping[str, Any], n: int):

@@ -7,21 +7,20 @@ import time
 from dataclasses import dataclass, replace
 
 import numpy as np
-import xarray as xr
 
 from ..analysis.bifurcation import bifurcation_dataset, d_values
-from ..analysis.catalogue import catalogue_dataset, sample_states
+from ..analysis.catalogue import sample_states
 from ..analysis.chain_bifurcation import chain_bifurcation_dataset
 from ..analysis.chain_dcrit import chain_products
 from ..analysis.labels import parse_label
 from ..config.axes import allowed_axes
 from ..config.chain_scene import CHAIN
 from ..config.reader import ConfigError, positive
-from ..config.sweep import read_catalogue
+from ..config.scene import forcing_period
 from ..report.compare import bifurcation_comparison_text, compare_bifurcations
-from ..store.catalogues import scene_catalogue
+from ..store.catalogues import scene_catalogue, with_catalogue
 from ..sweep.check import tightened
-from .base import AnalysisKind, PlotSpec, Sections, forcing_period
+from .base import AnalysisKind, PlotSpec, Sections
 
 QUICK_STEPS = 50  # --quick: largest number of d steps of a bifurcation diagram
 MAX_STEPS = 100_000
@@ -101,8 +100,7 @@ def read(sec, ctx) -> BifurcationAnalysis:
 
 def sections(analysis, ctx) -> Sections:
     ctx.refuse("grid", "initial_conditions")
-    return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
-                                                       ctx.system.extra["catalogue_box"]))
+    return Sections(analysis, catalogue=ctx.read_catalogue())
 
 
 def shrink(analysis, grid, axis: int):
@@ -127,11 +125,7 @@ def run(scene, progress=None, **_):
     tick = progress(len(branches)) if progress else None
     ds = bifurcation_dataset(scene.system, values, scene.integrator, cat, branches,
                              d_values(a.start, a.stop, a.step), tick, a.parameter)
-    ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
-                  combine_attrs="override", compat="override")
-    ds.attrs["analysis"] = "bifurcation"
-    ds.attrs["forcing_period"] = forcing_period(values)
-    return ds
+    return with_catalogue(ds, cat, scene)
 
 
 def run_chain(scene, progress=None):

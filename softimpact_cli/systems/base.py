@@ -28,22 +28,23 @@ coupling block from ``stops.py``) and its lines in ``REGISTRY`` (``systems/__ini
 and in ``variational.py``'s ``_KERNELS``. Adding a stop law is ``stops.py`` alone (its
 docstring says how). Nothing in the kernels changes for either.
 
-Any number of bodies is the chain family (``chain.py``: bodies, kinks and stops as data,
-one compiled rhs for every member; ``[system] model = "chain"``). The presets keep their
-body counts (``SUPPORTED_BODIES``, :func:`check_bodies` at registration). What is written
-for a chain and what is not yet (each refuses a chain in one line before it runs, where
-the scene is read):
+Adding a body: any number of bodies is the chain family (``chain.py``: bodies, kinks and
+stops as data, one compiled rhs for every member; ``[system] model = "chain"``). The
+presets keep their body counts (``SUPPORTED_BODIES``, :func:`check_bodies`, called at
+registration and where the code branches on a preset's body count). Where a chain stands:
 
-1. kernels and ``Surfaces``: several contact surfaces (``contacts``, a bit mask); onsets
-   and the maximum penetration are counted over all of them (one maximum, not one per
-   stop).
-2. ``config``: the chain's scene form (``config/chain_scene.py``); [grid] axes are the
-   preset's coupling keys (``config/sweep.py``), not yet a chain's named parameters.
-3. Labels and catalogues (``analysis/catalogue.py``, ``labels.py``): pairs of the presets;
-   a chain's attractors are numbered by period only (no names per body yet).
-4. ``kernels/cells.py``: recurrence cells pack at most ``MAX_CELL_DIM`` coordinates (the
-   scene reader turns cells off beyond it).
-5. The pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
+1. kernels and ``Surfaces``: done. Several contact surfaces (``contacts``, a bit mask);
+   onsets and the maximum penetration are counted over all of them (one running maximum,
+   not one per stop: a per-stop d_crit needs one per stop).
+2. ``config``: done for the scene form (``config/chain_scene.py``); [grid] axes are a
+   preset's (``config/sweep.py``), not yet a chain's named parameters (``stop.1.d``).
+3. Kinds (``kinds/scene.py`` ``CHAIN_KINDS``): trajectory and lyapunov (from a state) run
+   on a chain; the others refuse it in one line when the scene is read, because:
+4. labels and catalogues (``analysis/catalogue.py``, ``labels.py``, ``sweep/chunks.py``)
+   name a body's attractors and a pair's combinations (``L1^1 R1-0^1``);
+5. ``kernels/cells.py`` packs at most ``MAX_CELL_DIM`` coordinates (the scene reader turns
+   cells off beyond it);
+6. the pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
    orbits in ``sweep/runner.py``) use ``x1 - x2 - d``.
 """
 

@@ -185,3 +185,17 @@ transient = 10
     assert int(ds["status"][0]) == 0 and ds.sizes["order"] == 4
     total = float(ds["exponent"][0].sum())
     assert abs(total - (-(0.05 / 1.0 + 0.1 / 2.0))) < 1e-6
+
+
+def test_the_python_system_of_a_chain_runs_trajectories_and_refuses_names():
+    import softimpact_cli as si
+
+    system = si.System(HEAD + STOPS + TAIL)
+    assert system.state_names == ("x1", "v1", "x2", "v2", "x3", "v3")
+    ds = system.trajectory([1.5, 0.0, -0.5, 1.0, -2.0, 0.0], periods=3)
+    assert ds.sizes["variable"] == 6
+    for call in (system.catalogue, lambda: system.classify([0.0] * 6),
+                 lambda: system.with_(w=1.2)):
+        with pytest.raises(ConfigError, match='not yet for model = "chain"') as err:
+            call()
+        assert "\n" not in str(err.value)
