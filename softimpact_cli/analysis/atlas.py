@@ -218,8 +218,8 @@ def atlas_dataset(system: System, settings: AtlasSettings, curves: list[Curve],
     coords = {"curve_point": np.arange(N), "curve": np.arange(len(curves)),
               "codim2": np.arange(K), "parameter": [a, b],
               "variable": list(system.state_names), "multiplier": np.arange(n)}
-    attrs = {"analysis": "atlas", "parameters": json.dumps([a, b]),
-             "ranges": json.dumps([list(r) for r in settings.ranges]),
+    attrs = {"analysis": "atlas", "atlas_parameters": json.dumps([a, b]),
+             "atlas_ranges": json.dumps([list(r) for r in settings.ranges]),
              "model": system.model, "bodies": system.bodies, "seeds": int(seeds),
              "max_period": settings.max_period}
     return xr.Dataset(data, coords=coords, attrs=attrs)

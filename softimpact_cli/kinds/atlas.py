@@ -177,7 +177,7 @@ def _over(path: str, ds):
     if not Path(path).is_file():
         raise ConfigError(f"--over: {path}: no such file")
     over = open_result(path)
-    a, b = json.loads(ds.attrs["parameters"])
+    a, b = json.loads(ds.attrs["atlas_parameters"])
     kind = over.attrs.get("analysis")
     if kind == "dcrit":
         if {a, b} != {"phi", "d"}:

@@ -39,8 +39,8 @@ def _underlay(ax, over, a: str, b: str) -> None:
 def draw_atlas(ds, over=None, ax=None):
     """One panel: every curve of ``ds`` in (a, b), over ``over`` (a map or dcrit Dataset)
     when given; returns the matplotlib Figure."""
-    a, b = json.loads(ds.attrs["parameters"])
-    (a0, a1), (b0, b1) = json.loads(ds.attrs["ranges"])
+    a, b = json.loads(ds.attrs["atlas_parameters"])
+    (a0, a1), (b0, b1) = json.loads(ds.attrs["atlas_ranges"])
     if ax is None:
         fig = new_figure(figsize=(8, 6))
         ax = fig.subplots()

@@ -32,8 +32,8 @@ def atlas_summary(ds) -> dict:
                "orbit": str(ds["curve_orbit"].values[int(ds["codim2_curve"].values[k])]),
                "point": [float(x) for x in ds["codim2_pair"].values[k]]}
               for k in range(ds.sizes["codim2"])]
-    return {"parameters": json.loads(ds.attrs["parameters"]),
-            "ranges": json.loads(ds.attrs["ranges"]), "curves": curves, "codim2": codim2}
+    return {"parameters": json.loads(ds.attrs["atlas_parameters"]),
+            "ranges": json.loads(ds.attrs["atlas_ranges"]), "curves": curves, "codim2": codim2}
 
 
 def atlas_info(ds) -> dict:
