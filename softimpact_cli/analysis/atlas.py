@@ -147,7 +147,7 @@ def trace_curves(system: System, values: Mapping[str, Any], settings: AtlasSetti
         aug = AugmentedMap(system, values, settings.parameters, s.periods, s.kind)
         known = [c for c in curves if c.kind == s.kind and c.periods == s.periods]
         if not any(on_curve(aug, c, s.u, s.fixed, tol) for c in known):
-            first = seed(aug, s.u, tol)
+            first = seed(aug, s.u, tol, s.fixed)
             if first is not None:
                 curve = follow_curve(aug, first, settings.curve_settings(),
                                      settings.ranges[0], s.orbit)

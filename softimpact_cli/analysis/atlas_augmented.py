@@ -21,7 +21,12 @@ bordered test functions; not the standard augmentation by eigenvectors):
   (:meth:`AugmentedMap.refresh`), fixed during one Newton correction.
 - grazing: ``g = max over the orbit of x1 - x2 - d``, the maximum located on the flow to
   1e-12 in time (``critical_distance.critical_distance``, as the dcrit kind does), so the
-  curve equals the critical distances to the integration tolerance.
+  curve equals the critical distances to the integration tolerance. On the curve the orbit
+  touches the stop without penetrating it (g = 0 is its largest contact), so it is the
+  orbit of the pair with the stop out of reach (d = ``NO_CONTACT_D``, as dcrit integrates
+  it): P, M and the parameter derivatives are taken there, the one-sided limit from the
+  non-impacting side (from the impacting side dP/dd grows like the inverse square root of
+  the penetration, and no smooth augmented system exists across it); d only enters g.
 
 **Jacobian.** The first n rows are ``[M - I | dG/da | dG/db]``: M exact (variational
 equations, with the saltation matrices on an impacting orbit), the parameter derivatives by
@@ -46,9 +51,9 @@ import numpy as np
 
 from ..kernels.codes import OK
 from ..systems import System
-from .critical_distance import critical_distance
-from .engine import flow
-from .shooting import SHOOTING, OrbitMap
+from .critical_distance import NO_CONTACT_D, critical_distance
+from .engine import Problem, flow
+from .shooting import SHOOTING, MapValue, OrbitMap
 
 CURVE_KINDS = ("fold", "period doubling", "Neimark-Sacker", "grazing")
 FD_STEP = 1e-6  # relative forward-difference step of the test function's derivatives
@@ -132,15 +137,42 @@ class AugmentedMap:
     def dim(self) -> int:
         return self.system.dim
 
+    def point_values(self, a: float, b: float) -> dict:
+        """The model's values at (a, b)."""
+        name_a, name_b = self.parameters
+        return {**self.values, name_a: float(a), name_b: float(b)}
+
+    def flow_values(self, a: float, b: float) -> dict:
+        """The values the orbit is integrated at: the point's, and for a grazing curve with
+        the stop out of reach (see the module docstring)."""
+        values = self.point_values(a, b)
+        if self.kind == "grazing":
+            values["d"] = NO_CONTACT_D
+        return values
+
     def orbit_map(self, a: float, b: float, free: int = 1) -> OrbitMap:
         """The one-parameter map at (a, b) with parameter ``free`` (0: a, 1: b) free."""
-        name_a, name_b = self.parameters
-        fixed = {**self.values, name_a: float(a), name_b: float(b)}
-        return OrbitMap(self.system, fixed, self.parameters[free], self.periods,
-                        self.integrator)
+        return OrbitMap(self.system, self.flow_values(a, b), self.parameters[free],
+                        self.periods, self.integrator)
 
-    def problem(self, a: float, b: float):
-        return self.orbit_map(a, b).problem(b)
+    def problem(self, a: float, b: float) -> Problem:
+        return Problem(self.system, self.flow_values(a, b), self.integrator)
+
+    def _moves_orbit(self, which: int) -> bool:
+        """Whether parameter ``which`` changes the orbit (not d on a grazing curve)."""
+        return not (self.kind == "grazing" and self.parameters[which] == "d")
+
+    def map_value(self, y, a: float, b: float) -> MapValue:
+        """P^p - I and the monodromy at (y, a, b), no parameter derivative."""
+        free = 1 if self._moves_orbit(1) else 0
+        return self.orbit_map(a, b, free).evaluate(y, (a, b)[free], parameter_derivative=False)
+
+    def parameter_derivative(self, y, a: float, b: float, which: int) -> np.ndarray:
+        """dG/d(a or b) (n,): central differences of the flow (zero where it does not move
+        the orbit)."""
+        if not self._moves_orbit(which):
+            return np.zeros(self.dim)
+        return self.orbit_map(a, b, which).parameter_derivative(y, (a, b)[which])
 
     def split(self, x, lam: float) -> tuple[np.ndarray, float, float]:
         x = np.asarray(x, dtype=float)
@@ -156,9 +188,9 @@ class AugmentedMap:
         if self.kind == "grazing":
             top, _ = critical_distance(self.problem(a, b), np.asarray(y, dtype=float),
                                        self.periods)
-            return top - float(self.problem(a, b).values["d"])
+            return top - float(self.point_values(a, b)["d"])
         if monodromy is None:
-            value = self.orbit_map(a, b).evaluate(y, b, parameter_derivative=False)
+            value = self.map_value(y, a, b)
             if value.status != OK:
                 return float("nan")
             monodromy = value.monodromy
@@ -189,15 +221,16 @@ class AugmentedMap:
         _, t_star = critical_distance(self.problem(a, b), y, self.periods)
         grad = np.empty(n + 2)
         for k in range(n + 2):
+            if k >= n and self.parameters[k - n] == "d":
+                grad[k] = -1.0  # the orbit does not move with d (see flow_values)
+                continue
             h = FD_STEP * max(1.0, abs(u[k]))
             sides = []
             for sign in (1.0, -1.0):
                 v = u.copy()
                 v[k] += sign * h
-                problem = self.problem(v[n], v[n + 1])
-                status, z, _ = flow(problem, v[:n], 0.0, t_star)
-                sides.append(z[0] - z[2] - float(problem.values["d"]) if status == OK
-                             else np.nan)
+                status, z, _ = flow(self.problem(v[n], v[n + 1]), v[:n], 0.0, t_star)
+                sides.append(z[0] - z[2] if status == OK else np.nan)
             grad[k] = (sides[0] - sides[1]) / (2.0 * h)
         return grad
 
@@ -205,18 +238,22 @@ class AugmentedMap:
         """F, its Jacobian and the monodromy at u = (x, lam) = (y, a, b)."""
         y, a, b = self.split(x, lam)
         n = self.dim
-        value = self.orbit_map(a, b).evaluate(y, b)
+        value = self.map_value(y, a, b)
         bad = AugmentedValue(value.status or (0 if value.ok else -1), np.full(n + 1, np.nan),
                              np.full((n + 1, n + 2), np.nan), value.monodromy, value.max_g)
         if not value.ok:
             return bad
-        d_da = self.orbit_map(a, b, free=0).parameter_derivative(y, a)
+        d_da = self.parameter_derivative(y, a, b, 0)
+        d_db = self.parameter_derivative(y, a, b, 1)
         g0 = self.test(y, a, b, value.monodromy)
         if not np.isfinite(g0):
             return bad
         jac = np.zeros((n + 1, n + 2))
         jac[:n, :n] = value.monodromy - np.eye(n)
-        jac[:n, n], jac[:n, n + 1] = d_da, value.dlam
+        jac[:n, n], jac[:n, n + 1] = d_da, d_db
         jac[n] = self.test_gradient(y, a, b, g0)
         residual = np.append(value.residual, g0)
-        return AugmentedValue(OK, residual, jac, value.monodromy, value.max_g)
+        max_g = value.max_g
+        if self.kind == "grazing":  # the contact function at the point's own d
+            max_g = g0
+        return AugmentedValue(OK, residual, jac, value.monodromy, max_g)

@@ -8,6 +8,9 @@ the augmented map of ``analysis/atlas_augmented.py`` (pseudo-arclength in (y, a,
 last component b playing the continued parameter; turns in b are not resolved, a curve
 turns freely). A direction ends at the rectangle's edge (the last point placed on it), when
 it closes, after ``max_points`` points, or when the corrector fails ("step too small").
+A grazing curve is the touching of the orbit's largest maximum of x1 - x2; where another
+local maximum becomes the largest the curve has a kink (the corrector stops there), and
+it is continued past it by Newton at a value of a just beyond (:func:`_leg`).
 
 Codimension-two points are the zeros, between consecutive points of a curve, of test
 functions evaluated on its points, located by the Illinois locator of the events module
@@ -38,12 +41,14 @@ import numpy as np
 from .atlas_augmented import AugmentedMap
 from .atlas_normal_form import criticality
 from .catalogue import orbit_points, same_cycle
-from .continuation import Leg, Point, Settings, correct, follow
+from .continuation import Leg, Point, Settings, correct, follow, tangent
 from .continuation_events import locate, multiplier_tests
 
 CODIM2_KINDS = ("cusp", "fold-flip", "degenerate flip", "1:1 resonance", "1:2 resonance",
                 "Chenciner", "grazing-fold")
 MATCH_TOL = 1e-6  # a seed this near (relative, inf-norm) a traced curve lies on it
+KINK_STEP = 1e-4  # relative step in a across a kink of a grazing curve
+MAX_KINKS = 20  # kinks crossed per direction
 
 
 @dataclass
@@ -110,10 +115,17 @@ def pair_trace(point: Point) -> float:
     return float((mu[i] + mu[j]).real)
 
 
-def seed(aug: AugmentedMap, u: np.ndarray, tol: float) -> Point | None:
-    """The curve's point near u = (y, a, b) (Newton at fixed b), tangent not yet set."""
+def seed(aug: AugmentedMap, u: np.ndarray, tol: float, fixed: int | None = None
+         ) -> Point | None:
+    """The curve's point near u = (y, a, b) (Newton with component ``fixed`` of u fixed,
+    default b: the one-parameter run's fixed parameter), tangent not yet set."""
     aug.border_b = aug.border_c = None
-    found = correct(aug, np.asarray(u, dtype=float), None, tol)
+    u = np.asarray(u, dtype=float)
+    normal = None
+    if fixed is not None:
+        normal = np.zeros(u.size)
+        normal[fixed] = 1.0
+    found = correct(aug, u, normal, tol)
     if found is None:
         return None
     u, value, k = found
@@ -147,16 +159,51 @@ def _edge_watch(aug: AugmentedMap, bounds_a: tuple[float, float], tol: float):
     return on_point
 
 
+def _leg(aug: AugmentedMap, first: Point, settings: Settings, bounds_a: tuple[float, float],
+         sign: float) -> Leg:
+    """One direction from ``first`` (its tangent set); a grazing curve is carried across
+    the kinks where the orbit's largest maximum of x1 - x2 passes from one local maximum
+    to another (there the corrector fails, "step too small"): Newton at a value of a
+    KINK_STEP further on, where g is continuous, and on from there."""
+    aug.refresh(first.value.monodromy)
+    leg = follow(aug, first, settings, sign, _edge_watch(aug, bounds_a, settings.tol))
+    n = aug.dim
+    for _ in range(MAX_KINKS):
+        if aug.kind != "grazing" or leg.end != "step too small":
+            break
+        last = leg.points[-1]
+        direction = np.sign(last.tangent[n])  # on in a as the curve went
+        if direction == 0:
+            break
+        target = last.u[n] + direction * KINK_STEP * max(1.0, abs(last.u[n]))
+        if not bounds_a[0] <= target <= bounds_a[1]:
+            break
+        guess = last.u.copy()
+        guess[n] = target
+        normal = np.zeros(n + 2)
+        normal[n] = 1.0
+        found = correct(aug, guess, normal, settings.tol)
+        if found is None:
+            break
+        u, value, k = found
+        t = tangent(value, None)
+        if t[n] * direction < 0:
+            t = -t
+        aug.refresh(value.monodromy)
+        more = follow(aug, Point(u, value, t, float(np.linalg.norm(u - last.u)), k), settings,
+                      sign, _edge_watch(aug, bounds_a, settings.tol))
+        leg = Leg(leg.points + more.points, more.end)
+    return leg
+
+
 def follow_curve(aug: AugmentedMap, first: Point, settings: Settings,
                  bounds_a: tuple[float, float], orbit: str) -> Curve:
     """Both directions from ``first`` (a corrected point), joined in order of arclength."""
-    aug.refresh(first.value.monodromy)
-    fore = follow(aug, Point(first.u, first.value, first.tangent, 0.0, first.newton),
-                  settings, +1.0, _edge_watch(aug, bounds_a, settings.tol))
-    aug.refresh(first.value.monodromy)
+    fore = _leg(aug, Point(first.u, first.value, first.tangent, 0.0, first.newton), settings,
+                bounds_a, +1.0)
     reverse = -fore.points[0].tangent
-    back = follow(aug, Point(first.u, first.value, reverse, 0.0, first.newton), settings,
-                  -1.0, _edge_watch(aug, bounds_a, settings.tol))
+    back = _leg(aug, Point(first.u, first.value, reverse, 0.0, first.newton), settings,
+                bounds_a, -1.0)
     for p in back.points[1:]:
         p.tangent = -p.tangent
     points = back.points[:0:-1] + fore.points
