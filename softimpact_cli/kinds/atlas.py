@@ -142,33 +142,6 @@ KEYS = {
     "switch_depth": "period doublings switched onto along the seeding branches",
 }
 
-EXAMPLE = '''
-[system]
-model = "duffing"
-
-[coupling]                 # the catalogue is searched here, inside the rectangle
-phi = "5*pi/8"
-k_c = 8.0
-c_c = 20.0
-d = 17.0
-
-[analysis]
-kind = "atlas"             # fold, PD, NS and grazing curves in two parameters (minutes)
-parameters = ["phi", "d"]  # any two parameters of the model
-ranges = { phi = [1.9, 2.0], d = [14.0, 17.0] }
-max_period = 1             # curves of orbits of at most this many forcing periods
-slices = 0                 # extra seeding runs in d at that many phi values
-step = 0.05
-max_step = 0.3
-max_points = 40            # per direction of each branch and curve
-
-[catalogue]
-grid = 4
-random = 20
-
-[output]
-path = "results/example_atlas.h5"
-'''
 
 
 def _over(path: str, ds):
@@ -204,7 +177,7 @@ KINDS = (AnalysisKind("atlas", "fold, period-doubling, Neimark-Sacker and grazin
                       read, plan, sections=sections, shrink=shrink, run=run,
                       summary=atlas_info, report=format_atlas,
                       info_after=lambda ds: format_atlas(ds).splitlines(),
-                      progress_unit="seeding runs", keys=KEYS, example=EXAMPLE,
+                      progress_unit="seeding runs", keys=KEYS,
                       variables=("pair", "curve_kind", "codim2_kind"),
                       plot=PlotSpec("The curves in the parameter plane (fold, PD, NS, grazing; "
                                     "solid where the orbit is stable beside its critical "
