@@ -41,6 +41,19 @@ random = 40
 [output]
 path = "{out}"
 """
+DCRIT = """
+[system]
+model = "duffing"
+
+[analysis]
+kind = "dcrit"
+
+[grid]
+phi = {{ start = 1.9, stop = 2.0, num = 3 }}
+
+[output]
+path = "{out}"
+"""
 GOOD = 'parameters = ["w", "F"]\nranges = { w = [1.27, 1.33], F = [2.3, 2.8] }'
 
 
@@ -105,6 +118,12 @@ def test_a_run_writes_a_fold_curve_that_info_and_plot_show(tmp_path):
     bad = runner.invoke(main, ["plot", "atlas", str(out), "--over", str(out), "-o",
                                str(png)])
     assert bad.exit_code == 2 and "--over" in bad.output and "'atlas' result" in bad.output
+    dcrit = tmp_path / "dcrit.h5"
+    (tmp_path / "dcrit.toml").write_text(DCRIT.format(out=dcrit))
+    assert runner.invoke(main, ["sweep", str(tmp_path / "dcrit.toml")]).exit_code == 0
+    bad = runner.invoke(main, ["plot", "atlas", str(out), "--over", str(dcrit), "-o",
+                               str(png)])
+    assert bad.exit_code == 2 and "the atlas is in (w, F), not (phi, d)" in bad.output
 
 
 @pytest.mark.slow
@@ -140,3 +159,13 @@ def test_figure_7_folds_lie_on_the_fold_curves_of_its_phi_d_scene(tmp_path):
             assert np.min(np.abs(np.linalg.eigvals(value.monodromy) - 1)) < 1e-7
     for d in (15.4916, 10.1972, 7.8172):
         assert min(abs(np.array(found) - d)) < 1e-4, (d, found)
+    dcrit = tmp_path / "dcrit.h5"
+    (tmp_path / "dcrit.toml").write_text(DCRIT.format(out=dcrit).replace(
+        'model = "duffing"', 'model = "duffing"\n\n[coupling]\nk_c = 8.0\nc_c = 20.0'))
+    runner = CliRunner()
+    assert runner.invoke(main, ["sweep", str(tmp_path / "dcrit.toml")]).exit_code == 0
+    png = tmp_path / "over.png"
+    plot = runner.invoke(main, ["plot", "atlas", str(out), "--over", str(dcrit), "-o",
+                                str(png)])
+    assert plot.exit_code == 0, plot.output
+    assert png.stat().st_size > 10_000
