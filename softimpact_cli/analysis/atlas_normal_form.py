@@ -131,11 +131,15 @@ def lyapunov_coefficient(orbit_map: OrbitMap, y, monodromy: np.ndarray) -> float
 
 
 def criticality(kind: str, orbit_map: OrbitMap, y, monodromy: np.ndarray) -> float:
-    """The normal-form coefficient of a point of a curve of ``kind`` (NaN but for PD, NS)."""
-    if kind == "period doubling":
-        return flip_coefficient(orbit_map, y, monodromy)
-    if kind == "Neimark-Sacker":
-        return lyapunov_coefficient(orbit_map, y, monodromy)
+    """The normal-form coefficient of a point of a curve of ``kind`` (NaN but for PD, NS,
+    and where it is undefined: at a strong resonance, I - A or A + I singular)."""
+    try:
+        if kind == "period doubling":
+            return flip_coefficient(orbit_map, y, monodromy)
+        if kind == "Neimark-Sacker":
+            return lyapunov_coefficient(orbit_map, y, monodromy)
+    except np.linalg.LinAlgError:
+        pass
     return float("nan")
 
 
