@@ -111,7 +111,9 @@ def run(scene, progress=None, **_):
                           f"(the catalogue has {len(cat.names)}: {', '.join(cat.names)})")
     tick = progress(2 + s.slices) if progress else None
     seeds = find_seeds(scene.system, values, s, starts, tick)
-    curves = trace_curves(scene.system, values, s, seeds)
+    # a second count: one per seed (traced, or found on a curve already traced)
+    curves = trace_curves(scene.system, values, s, seeds,
+                          progress(len(seeds)) if progress else None)
     ds = atlas_dataset(scene.system, s, curves, len(seeds))
     ds.attrs["catalogue_names"] = list(cat.names)
     return ds
@@ -177,7 +179,7 @@ KINDS = (AnalysisKind("atlas", "fold, period-doubling, Neimark-Sacker and grazin
                       read, plan, sections=sections, shrink=shrink, run=run,
                       summary=atlas_info, report=format_atlas,
                       info_after=lambda ds: format_atlas(ds).splitlines(),
-                      progress_unit="seeding runs", keys=KEYS,
+                      progress_unit="runs (seeding, then one per seed)", keys=KEYS,
                       variables=("pair", "curve_kind", "codim2_kind"),
                       plot=PlotSpec("The curves in the parameter plane (fold, PD, NS, grazing; "
                                     "solid where the orbit is stable beside its critical "
