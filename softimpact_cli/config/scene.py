@@ -35,6 +35,7 @@ from .sweep import (
     CatalogueSettings,
     Grid,
     InitialConditions,
+    read_catalogue,
 )
 from .verification import VerificationSettings
 
@@ -66,6 +67,10 @@ class SceneContext:
             if name in self.doc:
                 raise ConfigError(f"{self.source}: [{name}]: not used by kind "
                                   f"{self.doc.get('analysis', {}).get('kind', 'trajectory')!r}")
+
+    def read_catalogue(self) -> CatalogueSettings:
+        """The scene's [catalogue] section (its box by default the system's)."""
+        return read_catalogue(self.source, self.doc, self.system.extra["catalogue_box"])
 
 
 @dataclass(frozen=True)

@@ -194,3 +194,20 @@ def read_state(sec: Section, key: str, system: System) -> tuple[float, ...]:
                                 f"got {value!r}")
         out.append(float(v))
     return tuple(out)
+
+
+def read_start(sec: Section, system: System, starts: tuple[str, ...], *, at: str = "",
+               unused: str = "") -> tuple[str, tuple[float, ...] | None]:
+    """[analysis] start (one of ``starts``, the first the default) and, with start =
+    'state', its required state (``read_state``); a state with start = 'catalogue' is an
+    error. ``at`` ends the missing-state message (" at t = 0"), ``unused`` the
+    unused-state one (" (why)")."""
+    start = sec.choice("start", starts[0], starts)
+    if start == "state":
+        if not sec.has("state"):
+            raise sec.fail("state", f"is required with start = 'state': the initial "
+                                    f"{', '.join(system.state_names)}{at}")
+        return start, read_state(sec, "state", system)
+    if sec.has("state"):
+        raise sec.fail("state", f"not used with start = 'catalogue'{unused}")
+    return start, None

@@ -7,18 +7,15 @@ import time
 from dataclasses import dataclass, replace
 
 import numpy as np
-import xarray as xr
 
 from ..analysis.bifurcation import bifurcation_dataset, d_values
-from ..analysis.catalogue import catalogue_dataset
 from ..analysis.labels import parse_label
 from ..config.axes import allowed_axes
 from ..config.reader import ConfigError, positive
-from ..config.sweep import read_catalogue
 from ..report.compare import bifurcation_comparison_text, compare_bifurcations
-from ..store.catalogues import scene_catalogue
+from ..store.catalogues import scene_catalogue, with_catalogue
 from ..sweep.check import tightened
-from .base import AnalysisKind, PlotSpec, Sections, forcing_period
+from .base import AnalysisKind, PlotSpec, Sections
 
 QUICK_STEPS = 50  # --quick: largest number of d steps of a bifurcation diagram
 MAX_STEPS = 100_000
@@ -73,8 +70,7 @@ def read(sec, ctx) -> BifurcationAnalysis:
 
 def sections(analysis, ctx) -> Sections:
     ctx.refuse("grid", "initial_conditions")
-    return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
-                                                       ctx.system.extra["catalogue_box"]))
+    return Sections(analysis, catalogue=ctx.read_catalogue())
 
 
 def shrink(analysis, grid, axis: int):
@@ -97,11 +93,7 @@ def run(scene, progress=None, **_):
     tick = progress(len(branches)) if progress else None
     ds = bifurcation_dataset(scene.system, values, scene.integrator, cat, branches,
                              d_values(a.start, a.stop, a.step), tick, a.parameter)
-    ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)],
-                  combine_attrs="override", compat="override")
-    ds.attrs["analysis"] = "bifurcation"
-    ds.attrs["forcing_period"] = forcing_period(values)
-    return ds
+    return with_catalogue(ds, cat, scene)
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:

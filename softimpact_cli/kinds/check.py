@@ -41,3 +41,17 @@ def over_limit(report: dict, fail_over: float | None) -> str | None:
     if report.get("appeared_or_vanished"):
         return f"{report['appeared_or_vanished']} destruction points appeared or vanished"
     return f"{what} {value:.4g} > --fail-over {fail_over:g}" if value > fail_over else None
+
+
+def check_text(report: dict) -> str:
+    """The report of :func:`check_scene` as one line (``softimpact check``)."""
+    head = (f"check ({report['kind']}, {report['sample']} sampled, tightened settings: "
+            f"rtol and atol / 100, convergence_tol / 10, 2x periods, 4x RK4 steps): ")
+    if report["kind"] == "labels":
+        body = (f"{report['changed']} labels changed ({100 * report['changed_share']:.2f}%)"
+                + (f" [{', '.join(f'{k}: {v}' for k, v in report['changes'].items())}]"
+                   if report["changes"] else ""))
+    else:
+        body = f"largest change {report['max_change']:.3g}"
+    return (head + body + f"; wall {report['wall_s']:.2f} s vs {report['tight_wall_s']:.2f} s "
+            f"tightened (x{report['wall_ratio']:.2f})")

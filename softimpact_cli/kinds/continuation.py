@@ -14,11 +14,10 @@ from ..analysis.engine import Problem, classify_state
 from ..analysis.shooting import OrbitMap
 from ..config.axes import allowed_axes
 from ..config.reader import ConfigError, positive
-from ..config.sweep import read_catalogue
 from ..kernels.codes import CONVERGED
 from ..report.continuation import continuation_info, format_continuation
 from ..store.catalogues import scene_catalogue
-from .base import AnalysisKind, PlotSpec, Sections, read_state
+from .base import AnalysisKind, PlotSpec, Sections, read_start
 
 STARTS = ("catalogue", "state")
 QUICK_POINTS = 60  # --quick: points per direction of a branch
@@ -69,15 +68,7 @@ def read(sec, ctx) -> ContinuationAnalysis:
     if not low <= value <= high:
         raise sec.fail("low", f"the branch starts at the scene's {parameter} = {value!r}, "
                               f"which must lie in [low, high] = [{low!r}, {high!r}]")
-    start = sec.choice("start", "catalogue", STARTS)
-    state = None
-    if start == "state":
-        if not sec.has("state"):
-            raise sec.fail("state", f"is required with start = 'state': the initial "
-                                    f"{', '.join(ctx.system.state_names)} at t = 0")
-        state = read_state(sec, "state", ctx.system)
-    elif sec.has("state"):
-        raise sec.fail("state", "not used with start = 'catalogue'")
+    start, state = read_start(sec, ctx.system, STARTS, at=" at t = 0")
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
         raise sec.fail("branches", f"must be a list of catalogue names like 'L1^1' or "
@@ -108,8 +99,7 @@ def sections(analysis, ctx) -> Sections:
     if analysis.start == "state":
         ctx.refuse("catalogue")
         return Sections(analysis)
-    return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
-                                                       ctx.system.extra["catalogue_box"]))
+    return Sections(analysis, catalogue=ctx.read_catalogue())
 
 
 def shrink(analysis, grid, axis: int):

@@ -9,17 +9,16 @@ from dataclasses import dataclass, replace
 import numpy as np
 import xarray as xr
 
-from ..analysis.catalogue import catalogue_dataset
 from ..analysis.critical_distance import TIGHT, critical_distances, traces
 from ..config.expressions import parse_multiple
 from ..config.reader import ConfigError
 from ..config.scene import thin
-from ..config.sweep import read_catalogue, read_grid
+from ..config.sweep import read_grid
 from ..plot import dcrit
 from ..report.compare import compare_dcrit, dcrit_comparison_text
-from ..store.catalogues import scene_catalogue
+from ..store.catalogues import scene_catalogue, with_catalogue
 from ..sweep.check import tightened
-from .base import AnalysisKind, PlotOption, PlotSpec, Sections, forcing_period
+from .base import AnalysisKind, PlotOption, PlotSpec, Sections
 
 QUICK_PHIS = 64  # --quick: largest number of phases of a critical-distance curve
 DEFAULT_PHIS = 256  # phases over [0, 2 pi) without [grid] phi
@@ -64,8 +63,7 @@ def sections(analysis, ctx) -> Sections:
         phis = grid.axes["phi"]
     else:
         phis = tuple(np.linspace(0.0, 2 * np.pi, DEFAULT_PHIS, endpoint=False).tolist())
-    catalogue = read_catalogue(ctx.source, ctx.doc, ctx.system.extra["catalogue_box"])
-    return Sections(replace(analysis, phis=phis), grid, None, catalogue)
+    return Sections(replace(analysis, phis=phis), grid, None, ctx.read_catalogue())
 
 
 def shrink(analysis, grid, axis: int):
@@ -84,12 +82,7 @@ def run(scene, progress=None, **_):
     if a.traces:
         ds = xr.merge([ds, traces(scene.system, values, cat, a.traces, a.samples)],
                       combine_attrs="override")
-    ds = xr.merge([ds, catalogue_dataset(cat, scene.system, scene.integrator)
-                   .drop_vars(["combination_orbit"]).drop_dims("joint_point")],
-                  combine_attrs="override", compat="override")
-    ds.attrs["analysis"] = "dcrit"
-    ds.attrs["forcing_period"] = forcing_period(values)
-    return ds
+    return with_catalogue(ds, cat, scene, joints=False)
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:

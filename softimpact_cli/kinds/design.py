@@ -12,7 +12,7 @@ from dataclasses import replace
 from ..config.axes import COUPLING_AXES
 from ..config.limits import MAX_TRAJECTORIES, design_trajectories
 from ..config.reader import ConfigError
-from ..config.sweep import read_catalogue, read_initial_conditions
+from ..config.sweep import read_initial_conditions
 from ..report.info import design_summary, format_design
 from ..report.outcomes import design_counts
 from ..sweep.design import run_design
@@ -50,8 +50,7 @@ def sections(analysis, ctx) -> Sections:
         raise ConfigError(f"{source}: [analysis]/[initial_conditions]: the design runs up "
                           f"to {total} trajectories (candidates x screen_n + refine x n + "
                           f"perturbed points x robust_n + n); at most {MAX_TRAJECTORIES}")
-    catalogue = read_catalogue(source, doc, ctx.system.extra["catalogue_box"])
-    return Sections(analysis, None, initial, catalogue)
+    return Sections(analysis, None, initial, ctx.read_catalogue())
 
 
 def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):

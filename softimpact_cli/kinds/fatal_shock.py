@@ -13,7 +13,6 @@ from ..analysis.fatal_shock import fatal_shock_dataset, unit_directions
 from ..config.axes import GRID_AXES
 from ..config.limits import MAX_SEED
 from ..config.reader import ConfigError, positive
-from ..config.sweep import read_catalogue
 from ..report.fatal_shock import fatal_shock_lines, fatal_shock_summary
 from ..store.catalogues import scene_catalogue
 from ..sweep import label_states
@@ -22,11 +21,7 @@ from .base import AnalysisKind, PlotSpec, Sections
 
 @dataclass(frozen=True)
 class FatalShockAnalysis:
-    """The [analysis] keys: ``solution`` (a label name of the catalogue, e.g. "L1^1
-    R1-0^1"), ``phases`` along its orbit, ``directions`` (random unit vectors of the state
-    space, equally spaced angles for one body), ``max_shock`` (largest magnitude
-    scanned), ``scan`` (magnitudes scanned per direction), ``tol`` (bisection width),
-    ``seed`` (of the directions)."""
+    """The [analysis] keys, each described in :data:`KEYS`."""
 
     kind: str
     solution: str
@@ -36,6 +31,19 @@ class FatalShockAnalysis:
     scan: int = 12
     tol: float = 1e-3
     seed: int = 0
+
+
+# what each [analysis] key means (the scene-key reference)
+KEYS = {
+    "solution": 'the solution to knock off, by name ("L1^1 R1-0^1")',
+    "phases": "points of its orbit (over one period) where kicks are tried",
+    "directions": "unit directions of the kick (random on the sphere; evenly spaced angles for "
+                  "one body)",
+    "max_shock": "largest kick magnitude scanned",
+    "scan": "magnitudes scanned up to max_shock before the bisection",
+    "tol": "bisection tolerance of the fatal magnitude",
+    "seed": "seed of the random directions",
+}
 
 
 def read(sec, ctx) -> FatalShockAnalysis:
@@ -59,8 +67,7 @@ def read(sec, ctx) -> FatalShockAnalysis:
 
 def sections(analysis, ctx) -> Sections:
     ctx.refuse("grid", "initial_conditions")
-    return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
-                                                       ctx.system.extra["catalogue_box"]))
+    return Sections(analysis, catalogue=ctx.read_catalogue())
 
 
 def solution_orbit(scene, catalogue) -> np.ndarray:
@@ -101,18 +108,6 @@ def plan(scene, workers=None, chunk_size=None) -> str:
     return (f"fatal_shock: {a.solution}: {a.phases} phases x {a.directions} directions, "
             f"{a.scan} magnitudes up to {a.max_shock:g}, bisection to {a.tol:g}")
 
-
-# what each [analysis] key means (the scene-key reference)
-KEYS = {
-    "solution": 'the solution to knock off, by name ("L1^1 R1-0^1")',
-    "phases": "points of its orbit (over one period) where kicks are tried",
-    "directions": "unit directions of the kick (random on the sphere; evenly spaced angles for "
-                  "one body)",
-    "max_shock": "largest kick magnitude scanned",
-    "scan": "magnitudes scanned up to max_shock before the bisection",
-    "tol": "bisection tolerance of the fatal magnitude",
-    "seed": "seed of the random directions",
-}
 
 KINDS = (AnalysisKind(
     "fatal_shock", "minimal fatal shock: the smallest kick that sends a solution elsewhere",

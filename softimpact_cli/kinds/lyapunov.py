@@ -14,10 +14,10 @@ from ..analysis.lyapunov_scans import (
 )
 from ..config.reader import ConfigError
 from ..config.scene import thin
-from ..config.sweep import read_catalogue, read_grid
+from ..config.sweep import read_grid
 from ..report.lyapunov import format_lyapunov, lyapunov_summary
 from ..store.catalogues import scene_catalogue
-from .base import AnalysisKind, PlotSpec, Sections, read_state, read_t0
+from .base import AnalysisKind, PlotSpec, Sections, read_start, read_t0
 
 STARTS = ("state", "catalogue")
 QUICK_PERIODS = 100  # --quick: at most this many averaged periods (and 20 transient)
@@ -54,16 +54,8 @@ class LyapunovAnalysis:
 
 
 def read(sec, ctx) -> LyapunovAnalysis:
-    start = sec.choice("start", "state", STARTS)
-    state = None
-    if start == "state":
-        if not sec.has("state"):
-            raise sec.fail("state", f"is required with start = 'state': the initial "
-                                    f"{', '.join(ctx.system.state_names)}")
-        state = read_state(sec, "state", ctx.system)
-    elif sec.has("state"):
-        raise sec.fail("state", "not used with start = 'catalogue' (the solutions' own "
-                                "section points are the starts)")
+    start, state = read_start(sec, ctx.system, STARTS, unused=" (the solutions' own "
+                              "section points are the starts)")
     analysis = LyapunovAnalysis(
         kind="lyapunov", start=start, state=state, t0=read_t0(sec, ctx.period),
         periods=sec.integer("periods", 500, 2, MAX_PERIODS),
@@ -82,8 +74,7 @@ def read(sec, ctx) -> LyapunovAnalysis:
 def sections(analysis, ctx) -> Sections:
     if analysis.start == "catalogue":
         ctx.refuse("grid", "initial_conditions")
-        return Sections(analysis, catalogue=read_catalogue(ctx.source, ctx.doc,
-                                                           ctx.system.extra["catalogue_box"]))
+        return Sections(analysis, catalogue=ctx.read_catalogue())
     ctx.refuse("initial_conditions", "catalogue")
     if "grid" not in ctx.doc:
         return Sections(analysis)

@@ -16,7 +16,7 @@ from ..config.axes import GRID_AXES, catalogue_axes, every_axis, parameter_axes
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
 from ..config.scene import thin
-from ..config.sweep import read_catalogue, read_grid, read_initial_conditions
+from ..config.sweep import read_grid, read_initial_conditions
 from ..report.compare import compare_sweeps, sweep_comparison_text
 from ..report.info import stability_summary as shares
 from ..report.info import sweep_summary
@@ -65,8 +65,7 @@ def sections(analysis, ctx) -> Sections:
         raise ConfigError(f"{source}: [grid]/[initial_conditions]: {grid.size} grid points"
                           f" x {initial.count} initial conditions = {total} trajectories; "
                           f"at most {MAX_TRAJECTORIES} trajectories per sweep")
-    catalogue = read_catalogue(source, doc, ctx.system.extra["catalogue_box"])
-    return Sections(analysis, grid, initial, catalogue)
+    return Sections(analysis, grid, initial, ctx.read_catalogue())
 
 
 def shrink(analysis, grid, axis: int):

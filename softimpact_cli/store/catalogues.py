@@ -7,12 +7,14 @@ call for a scene's catalogue.
 from __future__ import annotations
 
 import numpy as np
+import xarray as xr
 
 from ..analysis.catalogue import (
     BodySearch,
     Catalogue,
     body_catalogue,
     body_problem,
+    catalogue_dataset,
     catalogue_states,
     extend_catalogue,
     require_attractors,
@@ -22,6 +24,7 @@ from ..analysis.catalogue import (
 )
 from ..analysis.engine import Problem
 from ..config import IntegratorSettings
+from ..config.scene import forcing_period
 from ..systems import System
 from ..systems.base import check_bodies
 from . import catalogue_cache
@@ -34,6 +37,21 @@ def scene_catalogue(scene) -> Catalogue:
     cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, *search)
     require_attractors(cat, scene.analysis.kind, str(scene.source))
     return cat
+
+
+def with_catalogue(ds: xr.Dataset, cat: Catalogue, scene, *,
+                   joints: bool = True) -> xr.Dataset:
+    """A kind's result ``ds`` with the catalogue ``cat`` it was computed from merged in
+    (``ds``'s attributes and values win), named after the scene's kind and with its
+    forcing period T = 2 pi / w (s). ``joints=False`` leaves out the joint orbits
+    (``combination_orbit`` and the ``joint_point`` dimension)."""
+    table = catalogue_dataset(cat, scene.system, scene.integrator)
+    if not joints:
+        table = table.drop_vars(["combination_orbit"]).drop_dims("joint_point")
+    ds = xr.merge([ds, table], combine_attrs="override", compat="override")
+    ds.attrs["analysis"] = scene.analysis.kind
+    ds.attrs["forcing_period"] = forcing_period(scene.values)
+    return ds
 
 
 def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:

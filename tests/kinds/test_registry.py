@@ -113,7 +113,7 @@ def test_sweep_kinds_refuse_resume_for_the_others(tmp_path):
 # with a stability result, `measure` of a basins result); everything else asks the registry.
 ALLOWED_KIND_TESTS = {
     "analysis/fractality.py": 1,
-    "cli.py": 3,
+    "commands.py": 3,
     "config/examples.py": 1,
 }
 

@@ -15,14 +15,7 @@ from softimpact_cli.analysis.attributes import LIST_ATTRIBUTES, as_list, attribu
 from softimpact_cli.analysis.catalogue import OLD_SEARCH_SHARE, SEARCH_SHARE, catalogue_from_dataset
 from softimpact_cli.cli import main
 from softimpact_cli.store import open_result
-
-PLANE = {"system": {"model": "duffing"},  # figure 6(d)'s plane, 10 x 8 starts
-         "coupling": {"d": 6.0, "phi": 0.0, "k_c": 8.0, "c_c": 10.0},
-         "analysis": {"kind": "basins"},
-         "initial_conditions": {"kind": "plane", "axes": ["x1", "x2"],
-                                "ranges": [[-12.0, 12.0], [-12.0, 12.0]],
-                                "resolution": [10, 8]},
-         "catalogue": {"grid": 4, "random": 20}}
+from tests.test_api import PLANE  # figure 6(d)'s plane, 10 x 8 starts
 
 
 def written_the_old_way(ds: xr.Dataset, path) -> None:

@@ -14,7 +14,7 @@ from softimpact_cli.report.verification import pilot_line
 from softimpact_cli.sweep import pilot
 from softimpact_cli.sweep import verification as v
 from softimpact_cli.sweep.check import sample_indices
-from tests.sweep.test_verification import PLANE
+from tests.sweep.test_verification import PLANE, sweep_with_verification_killed
 
 # figure 6(d)'s smooth Duffing plane at 32 x 32 = 1024 >= 50 x 20 trajectories
 SMOOTH = (PLANE.replace("resolution = [16, 16]", "resolution = [32, 32]")
@@ -124,16 +124,8 @@ def test_no_verify_runs_no_pilot_and_a_skipped_pilot_says_why(tmp_path):
 def test_a_resumed_verification_judges_the_tolerance_the_sweep_ran_at(tmp_path,
                                                                       monkeypatch):
     out = tmp_path / "k.h5"
-
-    def killed(*args, **kwargs):
-        raise KeyboardInterrupt
-
-    monkeypatch.setattr(v, "check_result", killed)
-    with pytest.raises(KeyboardInterrupt):
-        si.sweep(SMOOTH, out, workers=1)
-    kept = si.open_result(out)
+    kept = sweep_with_verification_killed(SMOOTH, out, monkeypatch)
     assert kept.attrs["verify_status"] == v.PENDING and kept.attrs["pilot_rtol"] == 1e-5
-    monkeypatch.undo()
     ds = si.sweep(SMOOTH, out, workers=1, resume=True)
     assert "rtol 1e-05" in ds.attrs["verify_run_settings"]
     assert ds.attrs["pilot_rtol"] == 1e-5

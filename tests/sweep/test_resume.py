@@ -53,6 +53,15 @@ def resume(out, chunk_size=None):
     return ds, "\n".join(said)
 
 
+def assert_resumed(reference, ds, said: str, done: int, out, store) -> None:
+    """A resume that found ``done`` of the 8 chunks kept and finished the sweep: the
+    dataset it returned and the file it wrote equal the reference, its chunks are gone."""
+    assert f"resuming: {done} of 8 chunks already done" in said
+    equal_results(reference, ds)
+    equal_results(reference, open_result(out))
+    assert not store.parts.exists()
+
+
 def test_damaged_and_foreign_parts_are_named_and_redone(reference, tmp_path, monkeypatch):
     out = tmp_path / "r.h5"
     store = interrupted(out, monkeypatch)
@@ -69,10 +78,7 @@ def test_damaged_and_foreign_parts_are_named_and_redone(reference, tmp_path, mon
     assert ("resume: 5 chunk files were damaged or foreign (chunk 1: unreadable "
             "(truncated or damaged); chunk 2: checksum; chunk 3: empty file; chunk 4: "
             "holds chunk 5's data; chunk 6: from another scene); recomputing them") in said
-    assert "resuming: 3 of 8 chunks already done" in said
-    equal_results(reference, ds)
-    equal_results(reference, open_result(out))
-    assert not store.parts.exists()
+    assert_resumed(reference, ds, said, done=3, out=out, store=store)
 
 
 def test_nothing_to_resume_starts_a_new_run(reference, tmp_path):
@@ -203,10 +209,7 @@ def test_a_header_that_says_complete_resumes_from_its_chunks(reference, tmp_path
     said = "\n".join(said)
     assert (f"resume: the result header {out} says it is complete but holds no 'label' "
             "variable; rewriting it and keeping the chunk files that verify") in said
-    assert "resuming: 8 of 8 chunks already done" in said
-    equal_results(reference, ds)
-    equal_results(reference, open_result(out))
-    assert not store.parts.exists()
+    assert_resumed(reference, ds, said, done=8, out=out, store=store)
 
 
 def test_a_header_that_says_complete_without_chunks_is_refused(tmp_path, monkeypatch):

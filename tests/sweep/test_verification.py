@@ -208,19 +208,24 @@ def test_api_run_verifies_in_memory_and_can_be_told_not_to():
         si.run(PLANE, verify_sample=0)
 
 
-def test_a_killed_verification_keeps_the_sweep_and_resume_verifies_it(tmp_path,
-                                                                       monkeypatch):
-    out = tmp_path / "k.h5"
-
+def sweep_with_verification_killed(scene: str, out, monkeypatch):
+    """Run ``scene`` into ``out`` with its verification stopped by a Ctrl-C; return what
+    the file kept (the patch undone: a resume then verifies)."""
     def killed(*args, **kwargs):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(v, "check_result", killed)
     with pytest.raises(KeyboardInterrupt):
-        si.sweep(PLANE, out, workers=1)
-    kept = si.open_result(out)
-    assert kept.attrs["complete"] == 1 and kept.attrs["verify_status"] == v.PENDING
+        si.sweep(scene, out, workers=1)
     monkeypatch.undo()
+    return si.open_result(out)
+
+
+def test_a_killed_verification_keeps_the_sweep_and_resume_verifies_it(tmp_path,
+                                                                       monkeypatch):
+    out = tmp_path / "k.h5"
+    kept = sweep_with_verification_killed(PLANE, out, monkeypatch)
+    assert kept.attrs["complete"] == 1 and kept.attrs["verify_status"] == v.PENDING
     ds = si.sweep(PLANE, out, workers=1, resume=True)
     assert ds.attrs["verify_status"] == v.BOUNDED
     assert si.open_result(out).attrs["verify_status"] == v.BOUNDED
@@ -230,11 +235,8 @@ def test_a_killed_verification_keeps_the_sweep_and_resume_verifies_it(tmp_path,
 def test_interrupted_line_says_how_to_verify(tmp_path, monkeypatch):
     from softimpact_cli.sweep.interrupt import sweep_kept
 
-    monkeypatch.setattr(v, "check_result", lambda *a, **k: (_ for _ in ()).throw(
-        KeyboardInterrupt()))
     out = tmp_path / "k.h5"
-    with pytest.raises(KeyboardInterrupt):
-        si.sweep(PLANE, out, workers=1)
+    sweep_with_verification_killed(PLANE, out, monkeypatch)
     assert "is complete but not verified; verify with: softimpact sweep s.toml -o " \
         in sweep_kept(out, "s.toml")
 

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import math
 
+from ..verdicts import Measure
+
 CHECKS = {}
 PI = math.pi
 
@@ -20,6 +22,11 @@ def check(name: str):
 
 def _names(names) -> str:
     return ", ".join(names) if names else "none"
+
+
+def _counted(names: list[str], what: str, run: str) -> Measure:
+    """How many ``names`` there are, shown as "N what: a, b, c", read from ``run``."""
+    return Measure(len(names), f"{len(names)} {what}: {_names(names)}", (run,))
 
 
 def _pct(x: float) -> str:

@@ -11,7 +11,7 @@ from ...analysis.labels import parse_label
 from ...kinds.scene import parse_scene
 from .. import measures as M
 from ..verdicts import Measure
-from . import _names, check
+from . import _counted, _names, check
 
 # ------------------------------------------------------------------ parameters, rules
 
@@ -125,8 +125,7 @@ def bilinear_left_period5(st, runs):
 
 @check("bilinear_state_count")
 def bilinear_state_count(st, runs):
-    names = M.combination_names(runs("fig10"))
-    return Measure(len(names), f"{len(names)} states: {_names(names)}", ("fig10",))
+    return _counted(M.combination_names(runs("fig10")), "states", "fig10")
 
 
 @check("fig11_third_label")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math  # noqa: F401
+from functools import partial
 
 import numpy as np
 
@@ -18,7 +19,7 @@ from ...config import IntegratorSettings
 from .. import measures as M
 from ..runs import RUNS, MissingRun
 from ..verdicts import Measure, agrees
-from . import PI, _names, check
+from . import CHECKS, PI, _counted, _names, check
 
 # ------------------------------------------------------------------ critical distances
 
@@ -275,44 +276,23 @@ def _impacting_end(st, runs, name: str) -> Measure:
     return m
 
 
-@check("destroyed_L12R102")
-def destroyed_l12r102(st, runs):
-    return _destroyed(st, runs, "L1^2 R1-0^2")
-
-
-@check("destroyed_L11R102")
-def destroyed_l11r102(st, runs):
-    return _destroyed(st, runs, "L1^1 R1-0^2")
-
-
-@check("destroyed_L12R101")
-def destroyed_l12r101(st, runs):
-    return _destroyed(st, runs, "L1^2 R1-0^1")
-
-
-@check("destroyed_L11R101")
-def destroyed_l11r101(st, runs):
-    m = _destroyed(st, runs, "L1^1 R1-0^1")
+def _impacting_end_and_fall(st, runs, name: str) -> Measure:
+    """:func:`_impacting_end`, noting the branch it falls to (the study's: L1^1 R1-0^1)."""
+    m = _impacting_end(st, runs, name)
+    m.note += f"; it falls to {_branch(runs, name)['falls_to']} (study: L1^1 R1-0^1)"
     return m
 
 
-@check("impacting_end_L12R102")
-def impacting_end_l12r102(st, runs):
-    return _impacting_end(st, runs, "L1^2 R1-0^2")
-
-
-@check("impacting_end_L11R102")
-def impacting_end_l11r102(st, runs):
-    m = _impacting_end(st, runs, "L1^1 R1-0^2")
-    m.note += f"; it falls to {_branch(runs, 'L1^1 R1-0^2')['falls_to']} (study: L1^1 R1-0^1)"
-    return m
-
-
-@check("impacting_end_L12R101")
-def impacting_end_l12r101(st, runs):
-    m = _impacting_end(st, runs, "L1^2 R1-0^1")
-    m.note += f"; it falls to {_branch(runs, 'L1^2 R1-0^1')['falls_to']} (study: L1^1 R1-0^1)"
-    return m
+# the figure 7 branches: where each is destroyed, and where its impacting stretch ends
+CHECKS.update({
+    "destroyed_L12R102": partial(_destroyed, name="L1^2 R1-0^2"),
+    "destroyed_L11R102": partial(_destroyed, name="L1^1 R1-0^2"),
+    "destroyed_L12R101": partial(_destroyed, name="L1^2 R1-0^1"),
+    "destroyed_L11R101": partial(_destroyed, name="L1^1 R1-0^1"),
+    "impacting_end_L12R102": partial(_impacting_end, name="L1^2 R1-0^2"),
+    "impacting_end_L11R102": partial(_impacting_end_and_fall, name="L1^1 R1-0^2"),
+    "impacting_end_L12R101": partial(_impacting_end_and_fall, name="L1^2 R1-0^1"),
+})
 
 
 @check("falls_to_L12R102")
@@ -323,8 +303,7 @@ def falls_to_l12r102(st, runs):
 
 @check("fig07_branch_count")
 def fig07_branch_count(st, runs):
-    b = M.branches(runs("fig07"))
-    return Measure(len(b), f"{len(b)} branches: {_names(list(b))}", ("fig07",))
+    return _counted(list(M.branches(runs("fig07"))), "branches", "fig07")
 
 
 @check("fig07_three_after_first")

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math  # noqa: F401
+from functools import partial
 
 import numpy as np
 
 from .. import measures as M
 from ..runs import RUNS, MissingRun
 from ..verdicts import Measure
-from . import CHECKS, PI, _names, _pct, _share_text, check
+from . import CHECKS, PI, _counted, _pct, _share_text, check
 from .basins import _plane
 
 # ------------------------------------------------------------------ basin stability
@@ -73,6 +74,11 @@ def _menck(runs, c_c: float, groups: list[str]) -> Measure:
     return m
 
 
+def _panel_check(measure, c_c: float, groups: list[str], st, runs) -> Measure:
+    """A check of a figure 14 (c, d) panel: ``measure(runs, c_c, groups)``."""
+    return measure(runs, c_c, groups)
+
+
 def _plane_shares(runs, c_c: float, groups: list[str]) -> Measure:
     m = _share_measure(_plane(runs, "fig14cd", c_c=c_c), groups, "fig14cd")
     m.shown += ", t0 = 0"
@@ -85,24 +91,13 @@ def _plane_shares(runs, c_c: float, groups: list[str]) -> Measure:
     return m
 
 
-@check("fig14c_plane_shares")
-def fig14c_plane_shares(st, runs):
-    return _plane_shares(runs, 10.0, DUFFING_C)
-
-
-@check("fig14d_plane_shares")
-def fig14d_plane_shares(st, runs):
-    return _plane_shares(runs, 2.0, DUFFING_D)
-
-
-@check("fig14c_menck_shares")
-def fig14c_menck_shares(st, runs):
-    return _menck(runs, 10.0, DUFFING_C)
-
-
-@check("fig14d_menck_shares")
-def fig14d_menck_shares(st, runs):
-    return _menck(runs, 2.0, DUFFING_D)
+# figure 14 (c) at c_c = 10 and (d) at c_c = 2: the plane's shares and the 4-D ones
+CHECKS.update({
+    "fig14c_plane_shares": partial(_panel_check, _plane_shares, 10.0, DUFFING_C),
+    "fig14d_plane_shares": partial(_panel_check, _plane_shares, 2.0, DUFFING_D),
+    "fig14c_menck_shares": partial(_panel_check, _menck, 10.0, DUFFING_C),
+    "fig14d_menck_shares": partial(_panel_check, _menck, 2.0, DUFFING_D),
+})
 
 
 @check("fig14a_plane_share")
@@ -187,7 +182,7 @@ def _nonimpacting_reached(run: str):
         names = set()
         for p in M.stability_points(runs(run)):
             names |= {n for n, c in p["counts"].items() if c > 0 and M.is_solution(n)}
-        return Measure(len(names), f"{len(names)} reached: {_names(sorted(names))}", (run,))
+        return _counted(sorted(names), "reached", run)
     return fn
 
 
