@@ -49,11 +49,15 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation")
 _PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
                "combinations (L/R names); a chain's are not named yet")
-_PAIR_GAP = "it follows a pair's one stop, x1 - x2 - d"
 CHAIN_REFUSALS = {
     "catalogue": _PAIR_NAMES, "basins": _PAIR_NAMES, "stability": _PAIR_NAMES,
-    "map": _PAIR_NAMES, "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
-    "fatal_shock": _PAIR_NAMES, "design": _PAIR_GAP, "continuation": _PAIR_GAP,
+    "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
+    "fatal_shock": _PAIR_NAMES,
+    "map": ("it predicts a pair's surviving combinations over (d, phi); on a chain kind "
+            "\"dcrit\" gives each stop's critical values"),
+    "design": "it chooses a pair's (d, phi, k_c, c_c), not yet a chain's stops",
+    "continuation": ("its shooting and events follow a pair's one stop, x1 - x2 - d; on a "
+                     "chain kind \"bifurcation\" follows the products along any parameter"),
 }
 
 
