@@ -121,6 +121,22 @@ fig07-basins: $(STAMP)
 	$(call GALLERY,results/fig07_basins.png)
 FIGURES += fig07
 
+# Figures 7's basins and 14(c, d) started at t0 = T/2, the start phase under which the
+# study's plane shares are reproduced (docs/howto/reproduce.md; the reproduction table's
+# runs fig07_basins_t0half, fig14cd_t0half): the scene with t0 = "T/2" added to its
+# [initial_conditions] (results/<name>.toml, then swept and drawn like the t0 = 0 figure).
+T0HALF_FIGS := fig07-basins-t0half fig14cd-t0half
+fig07-basins-t0half: configs/figures/fig07_duffing_basins.toml
+fig14cd-t0half: configs/figures/fig14cd_duffing_impacting.toml
+$(T0HALF_FIGS): $(STAMP)
+	@mkdir -p results
+	sed '/^\[initial_conditions\]/a t0 = "T/2"' $(filter %.toml,$^) > results/$(subst -,_,$@).toml
+	$(SI) sweep results/$(subst -,_,$@).toml -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
+	$(SI) plot basins results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png
+	$(call GALLERY,results/$(subst -,_,$@).png)
+.PHONY: $(T0HALF_FIGS)
+FIGURES += $(T0HALF_FIGS)
+
 map-d-phi: $(STAMP)
 	$(SI) sweep configs/figures/map_duffing_d_phi.toml -o results/map_d_phi.h5 --overwrite \
 		$(QUICKFLAG)
@@ -347,6 +363,7 @@ help:
 	@echo "  catalogues fig03 fig04 fig05 fig06 fig07 fig09 fig10 fig11 fig12 fig13"
 	@echo "  fig13-catalogue fig14 fig14ab fig14cd fig14c-t0 fig14c-random-t0 fig15 fig15a"
 	@echo "  fig15b map-d-phi  one figure each (results/<target>.{h5,png}; QUICK=1 works too)"
+	@echo "  fig07-basins-t0half fig14cd-t0half   figures 7's basins and 14(c, d) at t0 = T/2"
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
 	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
 	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda, fig. 14(c) NS, pitchforks"

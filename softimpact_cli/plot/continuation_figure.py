@@ -32,27 +32,62 @@ def _runs(mask: np.ndarray):
             start = k
 
 
+def branch_tex(name: str) -> str:
+    """A branch's name typeset as the basin figures typeset solutions: the longest leading
+    part that is a solution's name in LaTeX, the rest (``BP1+``, ``PD2``: where the branch
+    was switched onto) as it is. ``"L1^1 R1-0^1 BP1+"`` -> ``"$L^{1}_{1}R^{1}_{1-0}$ BP1+"``."""
+    words = name.split()
+    for k in range(len(words), 0, -1):
+        head = " ".join(words[:k])
+        if (tex := latex_of(head)) != head:
+            return " ".join([tex, *words[k:]])
+    return name
+
+
+def _free_slot(box, placed, inside) -> bool:
+    """Whether a label box (x0, y0, x1, y1, pixels) overlaps none placed and lies inside
+    ``inside`` (the axes' box) when that is given."""
+    x0, y0, x1, y1 = box
+    if inside is not None and not (x0 >= inside.x0 and x1 <= inside.x1
+                                   and y0 >= inside.y0 and y1 <= inside.y1):
+        return False
+    return not any(x0 < q1 and q0 < x1 and y0 < r1 and r0 < y1 for q0, r0, q1, r1 in placed)
+
+
 def _label_events(ax, points: list[tuple[float, float, str]]) -> None:
-    """Name each event marker (LP, NS, ...) beside it, moving a label up, in steps of its
-    height, while it would overlap one placed before (in display units: the axes' limits
-    as autoscaled from the branches drawn so far)."""
+    """Name each event marker (LP, NS, ...) beside it: up and right of the marker when that
+    place is free, else at the nearest free place (steps of a label's height up or down and
+    of three characters left or right, nearest first) inside the axes, with a leader line;
+    outside the axes only when no place inside is free. In display units, the axes' limits
+    as autoscaled from the branches drawn so far."""
     ax.autoscale_view()
     dpi_scale = ax.figure.dpi / 72.0
     height = 1.25 * LABEL_FONT * dpi_scale  # pixels of one label line
-    placed: list[tuple[float, float, float]] = []  # (x, y, width) in pixels
+    column = 3 * 0.65 * LABEL_FONT * dpi_scale  # pixels of three characters
+    steps = sorted(((dx, dy) for dx in range(-4, 5) for dy in range(-12, 13)),
+                   key=lambda d: (np.hypot(d[0] * column, d[1] * height), d[1] < 0, d[0] < 0))
+    inside = ax.get_window_extent()
+    placed: list[tuple[float, float, float, float]] = []
     for x, y, kind in sorted(points, key=lambda p: (p[0], p[1])):
         text = SHORT.get(kind, kind)
         width = 0.65 * LABEL_FONT * dpi_scale * len(text)
         px, py = ax.transData.transform((x, y))
         px, py = px + 4 * dpi_scale, py + 3 * dpi_scale
-        shift = 0.0
-        while any(abs(px - qx) < max(width, qw) and abs(py + shift - qy) < height
-                  for qx, qy, qw in placed):
-            shift += height
-        placed.append((px, py + shift, width))
-        ax.annotate(text, (x, y), textcoords="offset points",
-                    xytext=(4, 3 + shift / dpi_scale), fontsize=LABEL_FONT, zorder=6,
-                    arrowprops=dict(arrowstyle="-", lw=0.4, color="0.4") if shift else None)
+        boxes = [(px + dx * column, py + dy * height, px + dx * column + width,
+                  py + dy * height + height) for dx, dy in steps]
+        box = next((b for b in boxes if _free_slot(b, placed, inside)), None)
+        if box is None:  # crowded beyond the axes' room: stack upwards, free of the others
+            shift = 0.0
+            while not _free_slot((px, py + shift, px + width, py + shift + height), placed,
+                                 None):
+                shift += height
+            box = (px, py + shift, px + width, py + shift + height)
+        placed.append(box)
+        offset = ((box[0] - px) / dpi_scale + 4, (box[1] - py) / dpi_scale + 3)
+        moved = (box[0], box[1]) != (px, py)
+        ax.annotate(text, (x, y), textcoords="offset points", xytext=offset,
+                    fontsize=LABEL_FONT, zorder=6,
+                    arrowprops=dict(arrowstyle="-", lw=0.4, color="0.4") if moved else None)
 
 
 def draw_continuation(ds, ax=None):
@@ -68,7 +103,7 @@ def draw_continuation(ds, ax=None):
     stable = ds["stable"].values.astype(bool)
     impacting = ds["impacting"].values.astype(bool)
     mod = np.hypot(ds["multiplier_re"].values, ds["multiplier_im"].values)
-    if "sweep" in ds.dims:
+    if ds.sizes.get("sweep", 0):  # a scene may ask for no brute-force sweep
         for i in range(ds.sizes["sweep"]):
             up = str(ds["sweep_direction"].values[i]) == "up"
             p = ds["sweep_parameter"].values[i]
@@ -95,7 +130,7 @@ def draw_continuation(ds, ax=None):
             for m in range(mod.shape[1]):
                 panels[-1].plot(lam[part][a:z], mod[part, m][a:z], style, color=colour,
                                 lw=1.0, zorder=3)
-        panels[0].plot([], [], "-", color=colour, label=latex_of(branch))
+        panels[0].plot([], [], "-", color=colour, label=branch_tex(branch))
     events = [(float(ds["event_parameter"].values[e]), str(ds["event_kind"].values[e]),
                ds["event_state"].values[e]) for e in range(ds.sizes["event"])]
     for j, ax_ in enumerate(panels[:-1]):

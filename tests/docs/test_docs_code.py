@@ -20,7 +20,14 @@ from click.testing import CliRunner
 from softimpact_cli.cli import main
 from softimpact_cli.kinds.key_reference import read_schema
 from softimpact_cli.kinds.scene import parse_scene
-from tests.test_readme import _cheap, make_targets, resolve, shell_lines, without_optional
+from tests.test_readme import (
+    PLACEHOLDER,
+    _cheap,
+    make_targets,
+    resolve,
+    shell_lines,
+    without_optional,
+)
 
 ROOT = Path(__file__).parents[2]
 DOCS = ROOT / "docs"
@@ -154,3 +161,72 @@ def test_toml_blocks_are_scenes_or_known_keys(path):
         for section, table in doc.items():
             for key in table:
                 assert (section, key) in KNOWN, f"{path.name}: [{section}] {key} is no key"
+
+
+# What the slow test below adds to a command so that it takes seconds: sweeps and designs
+# at --quick size (replacing a result of the same path), reproduce with its run cache in
+# the scratch folder instead of the repository's results/reproduce/.
+SHRINK = {"sweep": ["--quick", "--overwrite"], "design": ["--quick", "--overwrite"],
+          "reproduce": ["--cache", "reproduce-cache"]}
+
+
+def shrunk(words: list[str]) -> list[str]:
+    """The command as the slow test runs it: the page's words, plus SHRINK's."""
+    extra = [w for w in SHRINK.get(words[0], []) if w not in words]
+    if words[0] == "reproduce" and "--cached-only" in words:
+        extra = []  # computes nothing, reads the repository's runs
+    return [*words, *extra]
+
+
+WITH_COMMANDS = [p for p in SOURCES if commands(page_text(p))]
+
+
+def make_results() -> dict[str, list[str]]:
+    """Result path -> the `softimpact sweep|design ...` words with which a make target
+    writes it (`make -n QUICK=1` of the targets the pages name, expanded by make)."""
+    run = subprocess.run(["make", "-n", "QUICK=1", "demo", "trajectory", "figures",
+                          "continuation", "designs", "lyapunov", "chaos"], cwd=ROOT,
+                         capture_output=True, text=True, check=True)
+    made = {}
+    for line in run.stdout.replace("\\\n", " ").splitlines():
+        if not line.startswith(".venv/bin/softimpact "):
+            continue
+        words = shlex.split(line)
+        if words[1] in ("sweep", "design") and "-o" in words:
+            made[words[words.index("-o") + 1]] = words[1:]
+    return made
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", WITH_COMMANDS,
+                         ids=[p.relative_to(DOCS).as_posix() for p in WITH_COMMANDS])
+def test_every_page_command_runs_at_quick_size(path, tmp_path, monkeypatch):
+    """Each page's commands in order, the costly ones too (the test above runs only the
+    cheap ones), in a scratch folder holding configs/, as SHRINK makes them small; each
+    must exit 0, and info, plot and measure read what the page's commands wrote, or,
+    for a result a make target writes (results/demo.h5 of `make demo`, results/fig04.h5
+    of `make fig04`), what that target's own sweep writes at QUICK=1 size. Left out, and
+    printed: lines with a placeholder (SCENE, RESULT.h5) or a shell variable, and lines
+    reading a result nothing here writes."""
+    shutil.copytree(ROOT / "configs", tmp_path / "configs")
+    monkeypatch.chdir(tmp_path)
+    runner, ran, left, by_make = CliRunner(), [], [], make_results()
+    for line_words, line in commands(page_text(path)):
+        words = without_optional(line_words)
+        if not words or any("$" in w or PLACEHOLDER.match(w) for w in words):
+            left.append(line)
+            continue
+        reads = {"info": 1, "plot": 2, "measure": 1}.get(words[0])
+        if reads is not None and not (tmp_path / words[reads]).is_file():
+            if words[reads] not in by_make:
+                left.append(line)
+                continue
+            made = runner.invoke(main, shrunk(by_make[words[reads]]))
+            assert made.exit_code == 0, f"{path.name}: making {words[reads]}: {made.output}"
+        result = runner.invoke(main, shrunk(words))
+        assert result.exit_code == 0, f"{path.name}: `{line}`: {result.output[-2000:]}"
+        if ">" in line_words:
+            (tmp_path / line_words[line_words.index(">") + 1]).write_text(result.output)
+        ran.append(line)
+    print(f"{path.name}: {len(ran)} run, {len(left)} left out: {left}")
+    assert ran, f"{path.name}: none of its commands ran"

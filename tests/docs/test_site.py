@@ -2,6 +2,7 @@
 page, the generated references, the executed tutorials; and a broken link fails it."""
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -71,18 +72,36 @@ def test_a_broken_link_fails_the_build(tmp_path):
     assert len(warnings) == 1, broken.stderr[-3000:]
 
 
-def test_make_figures_writes_the_gallery():
-    """Every gallery PNG but the t0 = T/2 variants (from the reproduction runs) is copied
-    there by `make figures`, `make continuation` or `make designs` at full resolution;
-    QUICK=1 leaves the gallery alone."""
-    def copies(*args: str) -> set[str]:
-        run = subprocess.run(["make", "-n", *args], cwd=ROOT, capture_output=True, text=True,
-                             check=True)
-        return {m for line in run.stdout.splitlines()
-                if (m := line.removeprefix("cp results/").removesuffix(" docs/gallery/"))
-                != line and line.endswith(" docs/gallery/")}
+def gallery_copies(*args: str) -> set[str]:
+    """The PNGs `make -n ARGS` would copy into docs/gallery/."""
+    run = subprocess.run(["make", "-n", *args], cwd=ROOT, capture_output=True, text=True,
+                         check=True)
+    return {m for line in run.stdout.splitlines()
+            if (m := line.removeprefix("cp results/").removesuffix(" docs/gallery/"))
+            != line and line.endswith(" docs/gallery/")}
 
-    made = copies("figures", "continuation", "designs")
+
+def test_make_figures_writes_the_gallery():
+    """Every gallery PNG is copied there by `make figures`, `make continuation` or `make
+    designs` at full resolution; QUICK=1 leaves the gallery alone."""
+    made = gallery_copies("figures", "continuation", "designs")
     shown = {p.name for p in (ROOT / "docs" / "gallery").glob("*.png")}
-    assert shown - {"fig07_basins_t0half.png", "fig14cd_t0half.png"} <= made
-    assert not copies("figures", "QUICK=1")
+    assert shown <= made, sorted(shown - made)
+    assert not gallery_copies("figures", "QUICK=1")
+
+
+def test_every_gallery_figure_names_the_command_that_makes_it():
+    """Each row of the gallery page shows one PNG and a `make TARGET` that writes exactly
+    that PNG into docs/gallery/ (so the page cannot point at a target that makes another
+    figure, or at none)."""
+    rows = [line for line in (ROOT / "docs" / "gallery.md").read_text().splitlines()
+            if line.startswith("| [![")]
+    shown = {p.name for p in (ROOT / "docs" / "gallery").glob("*.png")}
+    named = set()
+    for row in rows:
+        png = re.search(r"\]\(gallery/([^)]+\.png)\)", row).group(1)
+        targets = re.findall(r"`make ([a-z0-9-]+)`", row)
+        assert len(targets) == 1, f"gallery row of {png} names {targets or 'no'} make target"
+        assert gallery_copies(targets[0]) == {png}, f"`make {targets[0]}` does not make {png}"
+        named.add(png)
+    assert named == shown, sorted(shown ^ named)
