@@ -17,8 +17,9 @@
 from __future__ import annotations
 
 import hashlib
+import itertools
 from dataclasses import asdict, dataclass
-from math import gcd
+from math import gcd, lcm
 from typing import NamedTuple
 
 import numpy as np
@@ -30,7 +31,7 @@ from ..systems import System, get_system
 from ..systems.base import check_bodies
 from ..systems.variational import initial_variational_state, variational_system
 from .engine import Problem, classify_state, flow, record_trajectory
-from .labels import Label, shift
+from .labels import BodyToken, Label, all_shifts, bodies_label, shifts
 
 SHOOTING = IntegratorSettings(method="dopri5", rtol=1e-12, atol=1e-13)
 
@@ -100,11 +101,21 @@ class Catalogue:
     counts: dict[str, int]
     n_samples: int
     source: str = "computed"
+    more: tuple[tuple[Attractor, ...], ...] = ()  # bodies 3, 4, ...: each its attractors
+
+    @property
+    def per_body(self) -> tuple[tuple[Attractor, ...], ...]:
+        """Each body's attractors, in body order (one body, a pair, or more)."""
+        if not self.right:
+            return (self.attractors,)
+        return (self.attractors, self.right, *self.more)
 
     @property
     def names(self) -> tuple[str, ...]:
         """Names of the catalogue's solutions in code order: combinations for a pair,
-        attractors for one body."""
+        attractors for one body, every combination (:func:`combination_names`) for more."""
+        if self.more:
+            return combination_names(self.per_body)
         if self.right:
             return tuple(c.name for c in self.combinations)
         return tuple(a.name for a in self.attractors)
@@ -293,6 +304,30 @@ def combinations(left: list[Attractor], right: list[Attractor]) -> list[Combinat
     return out
 
 
+def joint_orbit(chosen, shifts_) -> np.ndarray:
+    """(lcm of the periods, 2n) section points of bodies on attractors ``chosen`` (one per
+    body, canonical order) with shifts ``shifts_`` (``labels.all_shifts``), in time
+    order from the section where each body i sits at its index s_i. For a pair, the
+    orbit :func:`combinations` gives."""
+    q = lcm(*(a.period for a in chosen))
+    return np.array([np.concatenate([a.points[(s + i) % a.period]
+                                     for a, s in zip(chosen, shifts_, strict=True)])
+                     for i in range(q)])
+
+
+def combination_names(per_body) -> tuple[str, ...]:
+    """The name of every combination of one attractor per body with every canonical
+    shift tuple (``labels.all_shifts``): attractors in each body's order (the first body's
+    slowest), shifts in lexicographic order. For a pair, the order of
+    :func:`combinations`."""
+    names = []
+    for chosen in itertools.product(*per_body):
+        for s in all_shifts([a.period for a in chosen]):
+            names.append(bodies_label([BodyToken(a.period, a.number, k)
+                                       for a, k in zip(chosen, s, strict=True)]).name)
+    return tuple(names)
+
+
 def match_point(attractors, point: np.ndarray, tol: float):
     """(attractor, index) whose section point is within tol of ``point``, else (None, -1)."""
     best = (None, -1, np.inf)
@@ -308,22 +343,26 @@ def match_point(attractors, point: np.ndarray, tol: float):
 
 def label_orbit(catalogue: Catalogue, orbit: np.ndarray, impacting: bool,
                 tol: float = 1e-3) -> Label:
-    """Name a converged orbit (q, 4) of the pair, or (q, 2) of one body (time order)."""
+    """Name a converged orbit (q, 2n) of n bodies (time order; body i is x_i = column 2i,
+    v_i = column 2i + 1): each body's last section point is matched to one of its
+    attractors (:func:`match_point`), and the joint period must be the lcm of theirs."""
     q = orbit.shape[0]
-    check_bodies(orbit.shape[1] // 2, "label_orbit (a pair's orbit splits at state index 2)")
     if impacting:
         return Label("impacting", q)
+    per_body = catalogue.per_body
+    if orbit.shape[1] != 2 * len(per_body):
+        raise ValueError(f"label_orbit: an orbit of {orbit.shape[1]} state variables, a "
+                         f"catalogue of {len(per_body)} bodies")
     last = orbit[-1]
-    a, j = match_point(catalogue.attractors, last[:2], tol)
-    if orbit.shape[1] == 2:
-        if a is None or q != a.period:
-            return Label("unmatched", q)
-        return Label("body", a.period, a.number)
-    b, k = match_point(catalogue.right, last[2:], tol)
-    if a is None or b is None or q != a.period * b.period // gcd(a.period, b.period):
+    found = [match_point(atts, last[2 * i: 2 * i + 2], tol) for i, atts in enumerate(per_body)]
+    if any(a is None for a, _ in found):
         return Label("unmatched", q)
-    return Label("pair", a.period, a.number, b.period, shift(j, k, a.period, b.period),
-                 b.number)
+    periods = [a.period for a, _ in found]
+    if q != lcm(*periods):
+        return Label("unmatched", q)
+    s = shifts([j for _, j in found], periods)
+    return bodies_label([BodyToken(a.period, a.number, k)
+                         for (a, _), k in zip(found, s, strict=True)])
 
 
 def extend_catalogue(system: System, values: dict, integrator: IntegratorSettings,

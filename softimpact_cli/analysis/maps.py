@@ -34,7 +34,8 @@ def add_map_counts(ds: xr.Dataset, system, values: dict, left_attractors: list,
     present = xr.concat([(label == c).any(ic_dims) for c in codes], dim="label_index")
     attractor = xr.DataArray([k not in ("unresolved", "diverged") for k in kinds],
                              dims="label_index")
-    free = xr.DataArray([k in ("pair", "body", "unmatched") for k in kinds], dims="label_index")
+    free = xr.DataArray([k in ("pair", "body", "bodies", "unmatched") for k in kinds],
+                        dims="label_index")
     found = (present & attractor).sum("label_index")
     found_free = (present & free).sum("label_index")
     phis = np.unique(np.asarray(ds["phi"].values, dtype=float))

@@ -47,7 +47,7 @@ def groups(names: list[str]) -> dict[str, list[int]]:
         kind = parse_label(name).kind
         if kind.startswith("impacting"):  # periodic, chaotic or quasi-periodic
             out.setdefault("impacting (all)", []).append(i)
-        elif kind in ("pair", "body", "unmatched", "chaotic", "quasi-periodic"):
+        elif kind in ("pair", "body", "bodies", "unmatched", "chaotic", "quasi-periodic"):
             out.setdefault("non-impacting (sum)", []).append(i)
     out.setdefault("impacting (all)", [])
     out.setdefault("non-impacting (sum)", [])

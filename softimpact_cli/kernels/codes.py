@@ -34,7 +34,12 @@ UNRESOLVED_LABEL = -2  # no period within max_periods, or a budget exhausted
 DIVERGED_LABEL = -3  # non-finite, beyond the divergence bound, or step underflow
 MIXED_CELL = -4  # a recurrence cell visited on the way to different labels (cells only)
 PENDING = -9  # not computed yet (never in a complete result)
-IMPACTING_BASE = 1000  # impacting P{p} -> 1000 + p
+CATALOGUE_WIDTH = 1000  # catalogue solutions 0 .. 999 take their index as code, and
+EXTENDED_CATALOGUE_BASE = 10_000_000  # the following ones (many bodies' combinations)
+# this base + index (analysis.labels.catalogue_code; below 2**31 for 2e9 solutions)
+IMPACTING_BASE = 1000  # impacting P{p} -> 1000 + p (the first impacting orbit of period p)
+NUMBERED_IMPACTING_BASE = 1_000_000  # impacting P{p}^{m}, m = 2 .. 999: this base
+# + 1000 m + p (analysis.labels.impacting_code; distinct impacting orbits of one period)
 UNMATCHED_BASE = 2000  # unmatched P{p} -> 2000 + p (non-impacting, in no catalogue)
 # Attractors that are not periodic, found by the second stage (analysis/nonperiodic.py):
 # base + n names attractor A{n} (n = 1 .. 999, numbered over the whole result in the order

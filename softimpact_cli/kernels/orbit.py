@@ -185,7 +185,7 @@ def follow_cells(y, n, cells, table, run, run_code):
     cells of one label after it: (run, its label code)."""
     if n >= cells.visited.shape[0]:
         return run, run_code
-    key = cell_key(y, cells.size)  # every visited key is written, whatever classifies
+    key = cell_key(y, cells.size, table)  # every visited key is written, whatever classifies
     cells.visited[n] = key
     code = MIXED_CELL
     if key != NO_CELL:
@@ -276,7 +276,7 @@ def classify_near(advance, rhs, p, start, surfaces, opts, limits, known, cells, 
     hist[0] = y
     use_cells = cells.size > 0.0 and cells.visited.shape[0] > 0
     if use_cells:
-        cells.visited[0] = cell_key(y, cells.size)
+        cells.visited[0] = cell_key(y, cells.size, table)
     use_known = known.capture_tol > 0.0 and known.points.shape[0] > 0
     run, run_code, streak, last_k, last_j = 0, MIXED_CELL, 0, -1, -1
     for n in range(1, max_periods + 1):

@@ -4,7 +4,9 @@ A system's catalogue numbers its solutions in a fixed order (attractors by perio
 amplitude, combinations by left attractor, right attractor and shift), and that order is
 the same in every result of the system, whatever d, phi, k_c or c_c. Solutions take
 colours from DISTINCT in that order, so no two solutions of one catalogue share a colour
-(up to len(DISTINCT)); impacting solutions share one extra colour, and unresolved and
+(up to len(DISTINCT)); impacting solutions share one extra colour (brown), except the
+second, third... impacting orbit of one period at one point (``impacting P1^2``,
+``analysis.impacting``), which take their own (IMPACTING_NUMBERED); unresolved and
 diverged outcomes have their own; chaotic and quasi-periodic attractors take one each.
 Without the catalogue order (a bare name), a name falls back to a stable hash of itself.
 """
@@ -16,7 +18,10 @@ from collections.abc import Sequence
 
 from ..analysis.attributes import attribute_list
 
-IMPACTING = "#8c564b"  # every impacting solution shares one extra colour
+IMPACTING = "#8c564b"  # every impacting solution shares one extra colour, but:
+# impacting P{p}^2, ^3, ...: another impacting orbit of the same period (tab20's light
+# brown, then tones none of the lists here uses), so two impacting basins are drawn apart
+IMPACTING_NUMBERED = ["#c49c94", "#4e2a1e", "#d4a017", "#5f9ea0", "#b05f3c", "#2f4f4f"]
 SPECIAL = {"unresolved": "#7f7f7f", "diverged": "#000000"}
 # 30 colours, the most distinct first (tab10 without brown and grey, then tab20's light
 # partners, then darker tab20b/tab20c tones); brown and grey stay reserved above.
@@ -51,6 +56,9 @@ def colour_of(name: str, order: Sequence[str] = ()) -> str:
         if number.isdigit():
             return NOT_PERIODIC[(int(number) - 1) % len(NOT_PERIODIC)]
     if name.startswith("impacting"):
+        number = name.rsplit("^", 1)[1] if "^" in name else ""
+        if number.isdigit() and int(number) >= 2:
+            return IMPACTING_NUMBERED[(int(number) - 2) % len(IMPACTING_NUMBERED)]
         return IMPACTING
     if name in SPECIAL:
         return SPECIAL[name]

@@ -15,9 +15,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..analysis.labels import name_of
+from ..analysis.impacting import impacting_number
+from ..analysis.labels import impacting_code, name_of
 from ..config import IntegratorSettings, Scene, forcing_period
 from .executors import LocalExecutor
+from .merge import impacting_numbering
 from .runner import prepare_catalogues, sweep_context
 from .second_stage import relabel, unpack
 
@@ -70,10 +72,20 @@ def rerun_named(scene: Scene, settings: IntegratorSettings, catalogues: dict,
     start = time.perf_counter()
     by_flat: dict[int, int] = {}
     recurrent = []
+    impacting = {}  # j -> section points of the impacting orbit it reached
     for j, chunk in (executor or LocalExecutor(1)).run(context, chunks):
         labels[j] = chunk["label"][0]
         by_flat[int(picks[j])] = j
         recurrent += unpack(chunk)
+        if impacting_number(labels[j]) is not None:
+            impacting[j] = next(iter(chunk["orbits"].values()))[1]
+    if impacting:  # numbered as the result numbered them, else in flat order
+        numbering = impacting_numbering(context)
+        seed_numbering(numbering, result)
+        n_ic = context.states.shape[0]
+        for j in sorted(impacting, key=lambda j: picks[j]):
+            pts = impacting[j]
+            labels[j] = impacting_code(len(pts), numbering.number(int(picks[j]) // n_ic, pts))
     table = None
     if recurrent:  # name the second stage's sets (flat order), as the result was named
         flat_labels = np.zeros(max(by_flat) + 1, dtype=np.int64)
@@ -82,6 +94,23 @@ def rerun_named(scene: Scene, settings: IntegratorSettings, catalogues: dict,
         for r in recurrent:
             labels[by_flat[r.flat]] = flat_labels[r.flat]
     return labels, time.perf_counter() - start, table if table is not None else result
+
+
+def seed_numbering(numbering, result) -> None:
+    """Number the impacting orbits of a stored ``result`` (its ``attractor_points`` per
+    label and grid point) in ``numbering`` first, so that a rerun names them as it did."""
+    if result is None or "attractor_points" not in result or "label_code" not in result:
+        return
+    codes = result["label_code"].values
+    points = result["attractor_points"].values
+    points = points.reshape(len(codes), -1, *points.shape[-2:])
+    numbered = sorted((impacting_number(c)[::-1], i) for i, c in enumerate(codes)
+                      if impacting_number(c) is not None)
+    for (number, period), i in numbered:
+        for point in range(points.shape[1]):
+            pts = points[i, point, :period]
+            if np.all(np.isfinite(pts)):
+                numbering.seed(point, pts, number)
 
 
 def label_changes(before: np.ndarray, after: np.ndarray, names: tuple[str, ...]

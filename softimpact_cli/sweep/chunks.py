@@ -12,6 +12,7 @@ import numpy as np
 
 from ..analysis.catalogue import Catalogue, label_orbit
 from ..analysis.engine import KnownOrbits, Problem, RecurrenceCells, classify_state
+from ..analysis.impacting import ImpactingOrbits
 from ..analysis.labels import code_of
 from ..analysis.section_follow import FAILED, PERIODIC, RECURRENT, KnownSets, follow_section
 from ..config import Grid, IntegratorSettings
@@ -107,7 +108,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     """Classify and label flat indices [start, stop).
 
     Returns per-trajectory arrays (RESULT_FIELDS) and ``orbits``: for each (grid point,
-    label code) first seen in this chunk, (flat index, section points (q, dim)). With
+    label code) first seen in this chunk, (flat index, section points (q, dim)). Distinct
+    impacting orbits of one period at one point take distinct codes, numbered in this
+    chunk's order (``analysis.impacting``; the parent renumbers them over the result). With
     recurrence cells (``cell_size > 0``) each grid point and each CELL_BLOCK of flat
     indices starts an empty table, so a result does not depend on the chunk boundaries
     as long as they fall on blocks.
@@ -136,6 +139,10 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     # verification, which turns cells off, follows every trajectory in full)
     current = -1
     catalogue: Catalogue | None = None
+    names = {name: i for i, name in enumerate(ctx.names)}  # code_of looks names up here:
+    # many bodies' catalogues name thousands of combinations
+    impacting = ImpactingOrbits(lambda at: Problem(system, ctx.point_values(at)[0], s),
+                                ctx.label_tol)  # numbered in this chunk's order
     for k in range(n):
         flat = start + k
         point, ic = divmod(flat, n_ic)
@@ -158,7 +165,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             period, contacts, max_pen = summary[code]
         elif cls.status == CONVERGED:
             label = label_orbit(catalogue, cls.orbit, cls.impacting, ctx.label_tol)
-            code = code_of(label, ctx.names)
+            if cls.impacting:
+                label = impacting.label(point, cls.orbit)
+            code = code_of(label, names)
             if (point, code) not in orbits:
                 orbits[(point, code)] = (flat, cls.orbit)
             period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
@@ -176,7 +185,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             elif follow.outcome == PERIODIC:
                 status, how = CONVERGED, BY_SECTION
                 label = label_orbit(catalogue, follow.orbit, follow.impacting, ctx.label_tol)
-                code = code_of(label, ctx.names)
+                if follow.impacting:
+                    label = impacting.label(point, follow.orbit)
+                code = code_of(label, names)
                 if (point, code) not in orbits:
                     orbits[(point, code)] = (flat, follow.orbit)
                 period, contacts, max_pen = len(follow.orbit), follow.contacts, follow.max_g

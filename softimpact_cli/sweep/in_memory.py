@@ -22,8 +22,9 @@ from ..config.sweep import Grid, InitialConditions
 from ..store.provenance import history_line, provenance
 from .chunks import RESULT_FIELDS
 from .executors import make_executor
+from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, SweepSettings, chunk_size_for
-from .runner import keep_first_orbits, labelled_dataset, prepare_inputs
+from .runner import labelled_dataset, prepare_inputs
 from .second_stage import progress_codes, unpack
 
 
@@ -51,16 +52,18 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
     arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
     orbits: dict = {}
     recurrent: list = []
+    numbering = impacting_numbering(inputs.context)
     tick = progress(plan.n_total, 0) if progress else None
     todo = [(i, *plan.chunk(i)) for i in range(plan.n_chunks)]
+    done = {}  # merged in flat order below: impacting orbits are numbered in that order
     for index, result in executor.run(inputs.context, todo):
-        start, stop = plan.chunk(index)
-        for key in RESULT_FIELDS:
-            arrays[key][start:stop] = result[key]
-        keep_first_orbits(orbits, result["orbits"])
-        recurrent += unpack(result)
+        done[index] = result
         if tick:
-            tick(progress_codes(result, start))
+            tick(progress_codes(result, plan.chunk(index)[0]))
+    for index in sorted(done):
+        start, stop = plan.chunk(index)
+        merge_chunk(arrays, orbits, numbering, inputs.context, start, stop, done[index])
+        recurrent += unpack(done[index])
     ds = labelled_dataset(scene, inputs, arrays, orbits, recurrent)
     ds.attrs.update(provenance(scene, started, time.time(), time.perf_counter() - t0))
     ds.attrs.update({"n": plan.n_total, "n_chunks": plan.n_chunks, "chunk_size": plan.chunk_size,

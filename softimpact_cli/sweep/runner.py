@@ -29,6 +29,7 @@ from ..store.sweep_store import (
 from ..systems.base import check_bodies
 from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
+from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, chunk_size_for
 from .result import sweep_dataset
 from .second_stage import progress_codes, relabel, unpack
@@ -165,14 +166,6 @@ def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
                        context)
 
 
-def keep_first_orbits(orbits: dict, found: dict) -> None:
-    """Merge a chunk's representative orbits into ``orbits``: per (grid point, code) the
-    one of the lowest flat index, whatever order the chunks finished in."""
-    for key, (flat, pts) in found.items():
-        if key not in orbits or flat < orbits[key][0]:
-            orbits[key] = (flat, pts)
-
-
 def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: dict,
                      recurrent: list | None = None) -> xr.Dataset:
     """The sweep's dataset from its flat arrays (RESULT_FIELDS, plan order) and orbits:
@@ -237,7 +230,7 @@ def _bad_parts_note(bad: dict[int, str]) -> str:
             f"({'; '.join(shown)}); recomputing {'it' if len(bad) == 1 else 'them'}")
 
 
-def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
+def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity, context: SweepContext
               ) -> tuple[dict, dict, dict[float, float], list]:
     """(flat arrays, orbits, {session start: its last part written}, recurrent
     trajectories) from verified parts. A part that fails verification is deleted and
@@ -246,6 +239,7 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
     orbits: dict = {}
     recurrent: list = []
     sessions: dict[float, float] = {}
+    numbering = impacting_numbering(context)
     for index in range(plan.n_chunks):
         start, stop = plan.chunk(index)
         try:
@@ -253,9 +247,7 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity
         except DamagedPart as why:
             store.drop_chunk(index)
             raise DamagedPart(f"chunk {index}: {why}") from None
-        for key in RESULT_FIELDS:
-            arrays[key][start:stop] = chunk[key]
-        keep_first_orbits(orbits, chunk["orbits"])
+        merge_chunk(arrays, orbits, numbering, context, start, stop, chunk)
         recurrent += unpack(chunk)
         first, last = float(meta["session_started"]), float(meta["written"])
         sessions[first] = max(sessions.get(first, first), last)
@@ -380,7 +372,7 @@ def _run_sweep(scene, out, workers, scheduler, resume, overwrite, chunk_size, ec
         if len(store.done() & set(range(plan.n_chunks))) < plan.n_chunks:
             continue
         try:
-            arrays, orbits, sessions, recurrent = _assemble(store, plan, identity)
+            arrays, orbits, sessions, recurrent = _assemble(store, plan, identity, context)
             break
         except DamagedPart as why:
             echo(f"{why}; recomputing it")

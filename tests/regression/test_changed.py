@@ -49,3 +49,37 @@ def test_the_sums_of_a_design_gain_what_their_new_members_gained():
     assert formerly_unresolved_only(stored, now) == []
     now["count"] = np.array([[5, 2, 2]])
     assert formerly_unresolved_only(stored, now) == ["group impacting (all): counts changed"]
+
+
+def test_an_impacting_label_may_split_into_numbered_orbits_only():
+    from softimpact_cli.analysis.labels import impacting_code
+    from tests.regression.changed import impacting_split_only
+
+    names = {0: "L1^1", 1001: "impacting P1", impacting_code(1, 2): "impacting P1^2",
+             1002: "impacting P2", impacting_code(2, 2): "impacting P2^2"}
+    stored = sweep([0, 1001, 1001, 1002], names)
+    now = sweep([0, 1001, impacting_code(1, 2), 1002], names)
+    # codes in order 0, 1001, 1002, 1002001: the split-off orbit has its own points
+    now["attractor_points"] = np.array([[[0.0], [1.0]], [[2.0], [3.0]], [[4.0], [5.0]],
+                                        [[6.0], [7.0]]])
+    now["periods_used"][2] = 99  # where the stored label was impacting: allowed
+    stored["attractor_points"] = now["attractor_points"][:3]
+    assert impacting_split_only(stored, now) == []
+    now["label"][3] = impacting_code(1, 2)  # impacting P2 -> impacting P1^2: not a split
+    now["periods_used"][0] = 7  # a non-impacting trajectory changed
+    assert impacting_split_only(stored, now) == [
+        "label: a change that is not impacting P{p} -> impacting P{p}^m",
+        "periods_used: 1 values changed where the label was not impacting"]
+
+
+def test_a_design_group_may_split_off_an_impacting_orbit_only():
+    from tests.regression.changed import impacting_split_only
+
+    stored = {"group": np.array(["L1^1", "impacting (all)", "impacting P1"]),
+              "count": np.array([[5, 4, 4]])}
+    now = {"group": np.array(["L1^1", "impacting (all)", "impacting P1", "impacting P1^2"]),
+           "count": np.array([[5, 4, 1, 3]])}
+    assert impacting_split_only(stored, now) == []
+    now["count"] = np.array([[4, 4, 1, 4]])
+    assert impacting_split_only(stored, now) == ["group L1^1: counts changed",
+                                                 "group impacting P1: counts changed"]
