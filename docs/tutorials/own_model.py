@@ -132,11 +132,14 @@ ax.set(xlabel="t / T", ylabel="displacement", title="the chain's period-1 orbit"
 ax.legend(loc="lower right", ncol=4, fontsize="small")
 
 # %% [markdown]
-# How the solutions of a chain are named: not yet. The presets name their attractors
-# from one body's catalogue and the pair's combinations (`L{p}^{n} R{p}-{s}^{n}`,
-# [names](../howto/catalogue.md)); a chain's result carries no `label`, and the tool
-# reports the outcome, the period in forcing periods and the contacts on the orbit, as
-# printed above (`softimpact plot trajectory` titles it "converged: period 1 T").
+# How the solutions of a chain are named: the names are defined for any number of bodies
+# ([names](../howto/catalogue.md)): `L{p}^{n} R{p}-{s}^{n}` for a pair, one token per body
+# for three or more (`B1:P2^1 B2:P1-0^2 B3:P2-1^1`: each body on its own attractor, with
+# its shift), and `impacting P{p}` for a periodic solution in contact, as this one is. A
+# chain's trajectory does not carry a name yet (no catalogue of its bodies' attractors is
+# built for it): the tool reports the outcome, the period in forcing periods and the
+# contacts on the orbit, as printed above (`softimpact plot trajectory` titles it
+# "converged: period 1 T").
 #
 # ## Basins and basin stability
 #
