@@ -52,10 +52,19 @@ def main() -> None:
     repeats = parser.parse_args().repeats
 
     ueda = Problem(get_system("duffing", 1), UEDA, RTOL_9)
+    pair = get_system("duffing", 2)
+    cls = classify_state(Problem(pair, FIG14C, SHOOT), FIG14C_START, 0.0)
+    orbit, _, residual = refine_periodic(Problem(pair, FIG14C, SHOOT), cls.orbit[0], 0.0, 1)
+    impacting = Problem(pair, FIG14C, RTOL_10)
     started = time.perf_counter()
-    lyapunov_spectrum(ueda, [2.5, 0.0], periods=10, transient=0, segments=1)
-    flow(ueda, [2.5, 0.0], 0.0, ueda.period)
-    print(f"first call (compiles the variational kernels unless cached): "
+    for problem, start in ((ueda, [2.5, 0.0]), (impacting, orbit)):
+        for per_period in (1, 8):
+            lyapunov_spectrum(problem, start, periods=2, transient=0, segments=1,
+                              per_period=per_period)
+        lyapunov_spectrum(problem, start, periods=2, transient=0, segments=1,
+                          saltation=False)
+        flow(problem, start, 0.0, problem.period)
+    print(f"first calls (compile the variational kernels unless cached): "
           f"{time.perf_counter() - started:.1f} s")
 
     wall, s = best_wall(lambda: lyapunov_spectrum(ueda, [2.5, 0.0], periods=2000,
@@ -63,10 +72,6 @@ def main() -> None:
     print(f"Ueda, 2100 periods at rtol 1e-9: {wall:.2f} s; exponents "
           f"{s.exponents[0]:+.4f} {s.exponents[1]:+.4f}")
 
-    pair = get_system("duffing", 2)
-    cls = classify_state(Problem(pair, FIG14C, SHOOT), FIG14C_START, 0.0)
-    orbit, _, residual = refine_periodic(Problem(pair, FIG14C, SHOOT), cls.orbit[0], 0.0, 1)
-    impacting = Problem(pair, FIG14C, RTOL_10)
     wall, s = best_wall(lambda: lyapunov_spectrum(impacting, orbit, periods=200,
                                                   transient=20, segments=10), repeats)
     print(f"fig. 14(c) impacting orbit (shooting residual {residual:.0e}), 220 periods at "
