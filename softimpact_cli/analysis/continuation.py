@@ -45,7 +45,8 @@ class Settings:
 
     bounds : (low, high) of the parameter; step, min_step, max_step : arclength steps in
     the Euclidean norm of (state, parameter); max_points : points per direction;
-    tol : Newton tolerance on |G|_inf (and on the last update)
+    tol : Newton tolerance on |G|_inf (and on the last update); resolve_turns : see
+    :func:`silent_turn`
     """
 
     bounds: tuple[float, float]
@@ -54,6 +55,9 @@ class Settings:
     max_step: float = 0.2
     max_points: int = 400
     tol: float = 1e-10
+    # cut the step where the branch turns back in lam with no multiplier through +1 (two
+    # folds in one step); off for the atlas's curves, which turn in either parameter freely
+    resolve_turns: bool = True
 
 
 @dataclass
@@ -186,7 +190,8 @@ def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 
             if turn <= MAX_TURN and jump <= max(settings.max_step, 2 * h) and \
                     moved <= MAX_CORRECTION * h:
                 accepted = Point(u, value, t_new, h, k)
-                if silent_turn(here, accepted) and h > RESOLVE * settings.min_step:
+                if settings.resolve_turns and silent_turn(here, accepted) and \
+                        h > RESOLVE * settings.min_step:
                     accepted = None  # two folds within one step: resolve them
         if accepted is None:
             h *= 0.5

@@ -102,7 +102,9 @@ def test_values(orbit_map: OrbitMap, point: Point) -> np.ndarray:
     return np.append(multiplier_tests(point.multipliers), g)
 
 
-def _test(orbit_map: OrbitMap, point: Point, which: int) -> float:
+def _test(orbit_map: OrbitMap, point: Point, which) -> float:
+    if callable(which):  # a test function of the caller's (the atlas's codimension two)
+        return float(which(point))
     if which == 3:
         return gap(orbit_map, point, precise=True)
     if which == 4:
@@ -120,17 +122,19 @@ def illinois(fm: float, fa: float, fb: float, side: int) -> tuple[bool, float, f
         return True, fm, fb * 0.5 if side == 1 else fb, 1
     return False, fa * 0.5 if side == -1 else fa, fm, -1
 
-def locate(orbit_map: OrbitMap, left: Point, right: Point, which: int, tol: float
+def locate(orbit_map: OrbitMap, left: Point, right: Point, which, tol: float
            ) -> Point | None:
-    """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing, 4 turn) between two
-    consecutive points of a leg (``right`` = the step ``right.step`` from ``left``)."""
+    """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing, 4 turn, or a
+    callable of a point, floor 1e-12) between two consecutive points of a leg (``right`` =
+    the step ``right.step`` from ``left``)."""
     a, b = 0.0, right.step
     fa, fb = _test(orbit_map, left, which), _test(orbit_map, right, which)
-    if which == 3 and np.sign(fa) == np.sign(fb):  # kernel max and precise max disagree
+    # grazing: the kernel's max and the precise max disagree on the sign change
+    if not callable(which) and which == 3 and np.sign(fa) == np.sign(fb):
         return right if abs(fb) < abs(fa) else left
     best = right if abs(fb) < abs(fa) else left
     side = 0
-    floor = 1e-14 if which < 3 else 1e-12
+    floor = 1e-14 if not callable(which) and which < 3 else 1e-12
     for _ in range(MAX_BISECTIONS):
         if b - a <= LOCATE_TOL * max(1.0, right.step):
             break

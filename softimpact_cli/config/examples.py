@@ -294,6 +294,33 @@ random = 40
 [output]
 path = "results/example_continuation.h5"
 """,
+    "atlas": """
+[system]
+model = "duffing"
+
+[coupling]                 # the catalogue is searched here, inside the rectangle
+phi = "5*pi/8"
+k_c = 8.0
+c_c = 20.0
+d = 17.0
+
+[analysis]
+kind = "atlas"             # fold, PD, NS and grazing curves in two parameters (seconds)
+parameters = ["phi", "d"]  # any two parameters of the model
+ranges = { phi = [1.9, 2.0], d = [14.0, 17.0] }
+max_period = 1             # curves of orbits of at most this many forcing periods
+slices = 0                 # extra seeding runs in d at that many phi values
+step = 0.05
+max_step = 0.3
+max_points = 40            # per direction of each branch and curve
+
+[catalogue]
+grid = 4
+random = 20
+
+[output]
+path = "results/example_atlas.h5"
+""",
 }
 
 

@@ -54,6 +54,7 @@ REGISTRY: dict[str, str] = {
     "fractality": "fractality",
     "lyapunov": "lyapunov",
     "continuation": "continuation",
+    "atlas": "atlas",
 }
 
 
