@@ -212,7 +212,8 @@ $(LYAPUNOV): $(STAMP)
 # figure 7 as branches in d (grazing at the critical distances, impacting orbits, folds),
 # Ueda's period-doubling cascade in F, figure 14(c)'s impacting orbit in c_c (its
 # subcritical Neimark-Sacker point), and the pair's symmetric orbit at phi = pi in w (two
-# branch points, the asymmetric pair switched onto). About 10 s, a minute, 30 s, 15 s, 30 s.
+# branch points, the asymmetric pair switched onto). Measured for the gallery
+# (docs/gallery.md, 2026-11-27, 2 cores at load 8-11, nice 19): 17 s, 72 s, 87 s, 40 s, 88 s.
 CONTINUATION := continuation-duffing-fold continuation-fig07 continuation-ueda \
 	continuation-fig14c-ns continuation-pitchfork
 continuation: $(CONTINUATION)

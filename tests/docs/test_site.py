@@ -38,13 +38,17 @@ def test_the_site_builds_strict_with_every_page_and_tutorial(tmp_path):
                  "howto/reproduce-table.html", "validation/numerics.html"):
         assert page in pages
     tutorials = sorted((ROOT / "docs" / "tutorials").glob("*.py"))
-    assert len(tutorials) >= 8
+    assert len(tutorials) >= 9
+    assert "own_model" in {path.stem for path in tutorials}
     for path in tutorials:
         html = (site / "tutorials" / f"{path.stem}.html").read_text()
         assert "Executed when the site was built" in html, path.name
         if path.stem != "batch_ci":  # the others draw their results
             assert f'src="{path.stem}-1.png"' in html, f"{path.name} shows no figure"
             assert (site / "tutorials" / f"{path.stem}-1.png").stat().st_size > 5000
+    own = (site / "tutorials" / "own_model.html").read_text()
+    assert "bodies 1..3" in own and "exit status: 2" in own  # the bad stop's one line
+    assert "stop 3 (wall)" in own  # the chain ran, its contacts counted per stop
     api = (site / "reference" / "api.html").read_text()
     assert 'id="softimpact_cli.api.sweep"' in api  # mkdocstrings rendered the module
     keys = (site / "reference" / "scene-keys.html").read_text()
