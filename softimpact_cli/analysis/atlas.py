@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from typing import Any
 
 import numpy as np
@@ -34,13 +34,13 @@ from ..systems import System
 from .atlas_augmented import CURVE_KINDS, AugmentedMap
 from .atlas_curves import Curve, codimension_two, follow_curve, on_curve, seed, stable_beside
 from .atlas_normal_form import supercritical
-from .continuation import Settings
+from .continuation import Settings, StepControl
 from .continuation_branches import Branch, continue_starts, crossings
 from .shooting import OrbitMap
 
 
 @dataclass(frozen=True)
-class AtlasSettings:
+class AtlasSettings(StepControl):
     """How the atlas is drawn (the ``[analysis]`` keys of ``kinds/atlas.py``).
 
     parameters : (a, b); ranges : ((a_low, a_high), (b_low, b_high)); step, min_step,
@@ -53,8 +53,8 @@ class AtlasSettings:
 
     parameters: tuple[str, str]
     ranges: tuple[tuple[float, float], tuple[float, float]]
+    _: KW_ONLY  # StepControl's keys, with the atlas's defaults (min_step as there)
     step: float = 0.05
-    min_step: float = 1e-6
     max_step: float = 0.3
     max_points: int = 300
     tolerance: float = 1e-9
@@ -63,12 +63,10 @@ class AtlasSettings:
     switch_depth: int = 1
 
     def branch_settings(self, which: int) -> Settings:
-        return Settings(self.ranges[which], self.step, self.min_step, self.max_step,
-                        self.max_points, min(self.tolerance, 1e-10))
+        return self.settings(self.ranges[which], min(self.tolerance, 1e-10))
 
     def curve_settings(self) -> Settings:
-        return Settings(self.ranges[1], self.step, self.min_step, self.max_step,
-                        self.max_points, self.tolerance, resolve_turns=False)
+        return self.settings(self.ranges[1], resolve_turns=False)
 
 
 @dataclass

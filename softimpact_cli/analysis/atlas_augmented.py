@@ -53,7 +53,7 @@ from ..kernels.codes import OK
 from ..systems import System
 from .critical_distance import NO_CONTACT_D, critical_distance
 from .engine import Problem, flow
-from .shooting import SHOOTING, MapValue, OrbitMap
+from .shooting import SHOOTING, KernelValue, MapValue, OrbitMap
 
 CURVE_KINDS = ("fold", "period doubling", "Neimark-Sacker", "grazing")
 FD_STEP = 1e-6  # relative forward-difference step of the test function's derivatives
@@ -101,22 +101,14 @@ def bordered_test(A: np.ndarray, B: np.ndarray, C: np.ndarray) -> float:
         return float("nan")
 
 
-@dataclass
-class AugmentedValue:
+@dataclass(frozen=True)
+class AugmentedValue(KernelValue):
     """F at one u: ``residual`` (n + 1,), ``jacobian`` (n + 1, n + 2) in (y, a, b), the
-    orbit's ``monodromy`` (n, n) (the multipliers along the curve), ``max_g`` the kernels'
-    maximum of the contact function (-inf for one body), ``status`` (0 ok). The fields the
-    one-parameter corrector and ``continuation.Point`` read."""
+    orbit's ``monodromy`` (n, n) (the multipliers along the curve), ``max_g``, ``status``
+    as in ``KernelValue``. The fields the one-parameter corrector and
+    ``continuation.Point`` read."""
 
-    status: int
-    residual: np.ndarray
     jacobian: np.ndarray
-    monodromy: np.ndarray
-    max_g: float
-
-    @property
-    def ok(self) -> bool:
-        return self.status == OK and bool(np.all(np.isfinite(self.residual)))
 
 
 @dataclass
@@ -240,7 +232,8 @@ class AugmentedMap:
         n = self.dim
         value = self.map_value(y, a, b)
         bad = AugmentedValue(value.status or (0 if value.ok else -1), np.full(n + 1, np.nan),
-                             np.full((n + 1, n + 2), np.nan), value.monodromy, value.max_g)
+                             value.monodromy, value.max_g,
+                             jacobian=np.full((n + 1, n + 2), np.nan))
         if not value.ok:
             return bad
         d_da = self.parameter_derivative(y, a, b, 0)
@@ -256,4 +249,4 @@ class AugmentedMap:
         max_g = value.max_g
         if self.kind == "grazing":  # the contact function at the point's own d
             max_g = g0
-        return AugmentedValue(OK, residual, jac, value.monodromy, max_g)
+        return AugmentedValue(OK, residual, value.monodromy, max_g, jacobian=jac)

@@ -46,26 +46,34 @@ class _Forms:
         status, out, _ = self.orbit_map.image(z, self.lam)
         return out if status == 0 else np.full(z.size, np.nan)
 
-    def quadratic(self, z: np.ndarray) -> np.ndarray:
-        """B(z, z) for real z."""
+    def _along(self, z: np.ndarray, order: int) -> np.ndarray:
+        """The ``order``-th (2 or 3) directional derivative of the map at y along real z,
+        by central differences along the unit vector z / |z| (steps H2, H3), scaled back
+        by |z| ** order."""
         size = float(np.linalg.norm(z))
         if size == 0.0:
             return np.zeros_like(z)
         u = z / size
-        h = H2
-        second = (self.image(self.y + h * u) - 2 * self.centre + self.image(self.y - h * u))
-        return size ** 2 * second / h ** 2
+        if order == 2:
+            h = H2
+            difference = (self.image(self.y + h * u) - 2 * self.centre
+                          + self.image(self.y - h * u))
+            scale = h ** 2
+        else:
+            h = H3
+            difference = (self.image(self.y + 2 * h * u) - 2 * self.image(self.y + h * u)
+                          + 2 * self.image(self.y - h * u)
+                          - self.image(self.y - 2 * h * u))
+            scale = 2 * h ** 3
+        return size ** order * difference / scale
+
+    def quadratic(self, z: np.ndarray) -> np.ndarray:
+        """B(z, z) for real z."""
+        return self._along(z, 2)
 
     def cubic(self, z: np.ndarray) -> np.ndarray:
         """C(z, z, z) for real z."""
-        size = float(np.linalg.norm(z))
-        if size == 0.0:
-            return np.zeros_like(z)
-        u = z / size
-        h = H3
-        third = (self.image(self.y + 2 * h * u) - 2 * self.image(self.y + h * u)
-                 + 2 * self.image(self.y - h * u) - self.image(self.y - 2 * h * u))
-        return size ** 3 * third / (2 * h ** 3)
+        return self._along(z, 3)
 
     def bilinear_real(self, x: np.ndarray, w: np.ndarray) -> np.ndarray:
         return (self.quadratic(x + w) - self.quadratic(x - w)) / 4.0

@@ -60,6 +60,27 @@ class Settings:
     resolve_turns: bool = True
 
 
+@dataclass(frozen=True, kw_only=True)
+class StepControl:
+    """The step control of a continuation's ``[analysis]`` keys, shared by the kinds that
+    follow branches (``kinds/continuation.py``, the atlas's ``AtlasSettings``, which gives
+    its own defaults): step, min_step, max_step (arclength, Euclidean norm of (state,
+    parameters)), max_points per direction, tolerance (Newton, |G|_inf)."""
+
+    step: float = 0.02
+    min_step: float = 1e-6
+    max_step: float = 0.2
+    max_points: int = 400
+    tolerance: float = 1e-10
+
+    def settings(self, bounds: tuple[float, float], tol: float | None = None,
+                 resolve_turns: bool = True) -> Settings:
+        """The ``Settings`` of a branch within ``bounds`` (Newton tolerance ``tol``, else
+        ``tolerance``)."""
+        return Settings(bounds, self.step, self.min_step, self.max_step, self.max_points,
+                        self.tolerance if tol is None else tol, resolve_turns=resolve_turns)
+
+
 @dataclass
 class Point:
     """One solution on a branch: u = (y, lam) (n + 1,), the map there, the unit tangent

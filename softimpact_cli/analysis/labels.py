@@ -93,41 +93,27 @@ class Label:
 
     @property
     def name(self) -> str:
-        if self.kind == "pair":
-            return (f"L{self.period}^{self.left} "
-                    f"R{self.right_period}-{self.shift}^{self.right}")
-        if self.kind == "body":
-            return f"L{self.period}^{self.left}"
-        if self.kind == "bodies":
-            return " ".join(f"B{i + 1}:P{t.period}" + (f"-{t.shift}" if i else "")
-                            + f"^{t.number}" for i, t in enumerate(self.tokens))
-        if self.kind == "impacting":
-            return f"impacting P{self.period}" + (f"^{self.left}" if self.left > 1 else "")
-        if self.kind == "unmatched":
-            return f"{self.kind} P{self.period}"
-        if self.kind in NONPERIODIC_KINDS:
-            return f"{self.kind} A{self.left}"
-        return self.kind
+        return self._written(PLAIN)
 
     @property
     def latex(self) -> str:
-        if self.kind == "pair":
-            return (f"$L^{{{self.left}}}_{{{self.period}}}"
-                    f"R^{{{self.right}}}_{{{self.right_period}-{self.shift}}}$")
-        if self.kind == "body":
-            return f"$L^{{{self.left}}}_{{{self.period}}}$"
+        return self._written(LATEX)
+
+    def _written(self, notation: int) -> str:
+        """The name (``PLAIN``) or its matplotlib mathtext (``LATEX``), from the kind's
+        formats in ``_NOTATION``; a kind without formats is written as itself."""
         if self.kind == "bodies":
-            return "$" + r"\,".join(
-                f"B_{{{i + 1}}}{{:}}P^{{{t.number}}}_{{{t.period}"
-                + (f"-{t.shift}" if i else "") + "}" for i, t in enumerate(self.tokens)) + "$"
-        if self.kind == "impacting":
-            number = f"^{{{self.left}}}" if self.left > 1 else ""
-            return f"impacting $P_{{{self.period}}}{number}$"
-        if self.kind == "unmatched":
-            return f"{self.kind} $P_{{{self.period}}}$"
-        if self.kind in NONPERIODIC_KINDS:
-            return f"{self.kind} $A_{{{self.left}}}$"
-        return self.kind
+            token, separator, whole = _BODIES_NOTATION
+            return whole[notation].format(separator[notation].join(
+                token[notation].format(body=i + 1, period=t.period, number=t.number,
+                                       shift=f"-{t.shift}" if i else "")
+                for i, t in enumerate(self.tokens)))
+        formats = _NOTATION.get(self.kind)
+        if formats is None:
+            return self.kind
+        number = (("^{}", "^{{{}}}")[notation].format(self.left)
+                  if self.left > 1 else "")  # of an impacting orbit past the first
+        return formats[notation].format(**vars(self), number=number)
 
 
 def bodies_label(tokens) -> Label:
@@ -198,6 +184,22 @@ def all_shifts(periods) -> list[tuple[int, ...]]:
 
 
 NONPERIODIC_KINDS = tuple(NONPERIODIC_BASES)
+PLAIN, LATEX = 0, 1  # the two notations of a label: its name, its mathtext
+# per kind: (name, mathtext) formats of the Label's fields (``number``: "^n" of the n-th
+# impacting orbit of a period met at one point, n > 1, else empty)
+_NOTATION = {
+    "pair": ("L{period}^{left} R{right_period}-{shift}^{right}",
+             "$L^{{{left}}}_{{{period}}}R^{{{right}}}_{{{right_period}-{shift}}}$"),
+    "body": ("L{period}^{left}", "$L^{{{left}}}_{{{period}}}$"),
+    "impacting": ("impacting P{period}{number}", "impacting $P_{{{period}}}{number}$"),
+    "unmatched": ("{kind} P{period}", "{kind} $P_{{{period}}}$"),
+    **{kind: ("{kind} A{left}", "{kind} $A_{{{left}}}$") for kind in NONPERIODIC_KINDS},
+}
+# three or more bodies: (per body token, separator, whole) formats in each notation
+_BODIES_NOTATION = (("B{body}:P{period}{shift}^{number}",
+                     "B_{{{body}}}{{:}}P^{{{number}}}_{{{period}{shift}}}"),
+                    (" ", r"\,"), ("{}", "${}$"))
+
 _PAIR = re.compile(r"^L(\d+)\^(\d+) R(\d+)-(\d+)\^(\d+)$")
 _BODY = re.compile(r"^L(\d+)\^(\d+)$")
 _TOKEN = re.compile(r"^B(\d+):P(\d+)(?:-(\d+))?\^(\d+)$")

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
@@ -46,18 +46,29 @@ SHOOTING = IntegratorSettings(method="dopri5", rtol=1e-12, atol=1e-13)
 PARAMETER_STEP = 1e-6
 
 
-class MapValue(NamedTuple):
-    """``P^p`` at one (y, lam): see the module docstring. ``status``: kernel status (0 ok)."""
+@dataclass(frozen=True)
+class KernelValue:
+    """What one evaluation of a shooting map returns, whatever its unknowns: ``status``
+    kernel status (0 ok), ``residual`` (m,), the orbit's ``monodromy`` (n, n) (its
+    multipliers), ``max_g`` the kernels' maximum of the contact function (-inf for one
+    body). ``MapValue`` and ``atlas_augmented.AugmentedValue`` add their derivatives."""
 
     status: int
     residual: np.ndarray
     monodromy: np.ndarray
-    dlam: np.ndarray
     max_g: float
 
     @property
     def ok(self) -> bool:
         return self.status == OK and bool(np.all(np.isfinite(self.residual)))
+
+
+@dataclass(frozen=True)
+class MapValue(KernelValue):
+    """``P^p`` at one (y, lam): see the module docstring; ``dlam`` (n,) the parameter
+    derivative of G."""
+
+    dlam: np.ndarray
 
     @property
     def jacobian(self) -> np.ndarray:
@@ -102,12 +113,12 @@ class OrbitMap:
                                 self.periods * problem.period)
         nan = np.full(n, np.nan)
         if status != OK:
-            return MapValue(status, nan, np.full((n, n), np.nan), nan, max_g)
+            return MapValue(status, nan, np.full((n, n), np.nan), max_g, dlam=nan)
         monodromy = z[n:].reshape(n, n)
         if max_g >= 0.0:
             monodromy = salted_monodromy(problem, y, self.periods)
         dlam = self.parameter_derivative(y, lam) if parameter_derivative else nan
-        return MapValue(status, z[:n] - y, monodromy, dlam, max_g)
+        return MapValue(status, z[:n] - y, monodromy, max_g, dlam=dlam)
 
     def parameter_derivative(self, y, lam: float) -> np.ndarray:
         """dG/dlam = dP^p/dlam (n,) by central differences (NaN when a flow fails)."""

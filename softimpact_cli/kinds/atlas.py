@@ -72,7 +72,7 @@ def read(sec, ctx) -> AtlasAnalysis:
                                      f"[{low!r}, {high!r}]")
     step = sec.number("step", 0.05, positive)
     settings = AtlasSettings(
-        (raw[0], raw[1]), ranges, step,
+        (raw[0], raw[1]), ranges, step=step,
         min_step=sec.number("min_step", min(1e-6, step), positive),
         max_step=sec.number("max_step", max(0.3, step), positive),
         max_points=sec.integer("max_points", 300, 2, MAX_POINTS),

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from ..analysis.continuation import Settings
+from ..analysis.continuation import StepControl
 from ..analysis.continuation_branches import continue_starts
 from ..analysis.continuation_dataset import continuation_dataset
 from ..analysis.continuation_sweep import sweeps
@@ -25,7 +25,7 @@ MAX_POINTS = 100_000
 
 
 @dataclass(frozen=True)
-class ContinuationAnalysis:
+class ContinuationAnalysis(StepControl):
     """[analysis] kind = "continuation".
 
     parameter : the continued parameter (d, phi, k_c, c_c for a pair; F, w always); it
@@ -48,11 +48,6 @@ class ContinuationAnalysis:
     start: str = "catalogue"
     state: tuple[float, ...] | None = None
     branches: tuple[str, ...] = ()
-    step: float = 0.02
-    min_step: float = 1e-6
-    max_step: float = 0.2
-    max_points: int = 400
-    tolerance: float = 1e-10
     switch_depth: int = 1
     brute_force_step: float = 0.0
 
@@ -77,7 +72,7 @@ def read(sec, ctx) -> ContinuationAnalysis:
         raise sec.fail("branches", "only with start = 'catalogue'")
     step = sec.number("step", 0.02, positive)
     a = ContinuationAnalysis(
-        "continuation", parameter, low, high, start, state, tuple(raw), step,
+        "continuation", parameter, low, high, start, state, tuple(raw), step=step,
         min_step=sec.number("min_step", min(1e-6, step), positive),
         max_step=sec.number("max_step", max(0.2, step), positive),
         max_points=sec.integer("max_points", 400, 2, MAX_POINTS),
@@ -137,8 +132,7 @@ def run(scene, progress=None, **_):
     lam0 = float(values[a.parameter])
     chosen = starts(scene)
     base = OrbitMap(scene.system, values, a.parameter, 1)
-    settings = Settings((a.low, a.high), a.step, a.min_step, a.max_step, a.max_points,
-                        a.tolerance)
+    settings = a.settings((a.low, a.high))
     tick = progress(len(chosen) * (2 if a.brute_force_step else 1)) if progress else None
     branches, fates = continue_starts(base, [(n, s, p) for n, s, p in chosen], lam0, settings,
                                       a.switch_depth, tick)

@@ -27,23 +27,8 @@ from ..store.layout import memory_order
 from .basins_figure import draw_basins
 from .bifurcation_figure import draw_bifurcation, draw_chain_bifurcation
 from .catalogue_figure import draw_catalogue
-from .common import (  # noqa: F401  (the helpers the figures share, named here too)
-    DEFAULT_DPI,
-    PARAMETER_TEX,
-    is_figure,
-    multiple_text,
-    new_figure,
-    panel_letter,
-    parameter_text,
-    phase_text,
-    pi_ticks,
-    place_panels,
-    root_figure,
-    save,
-    start_text,
-    start_time,
-    wrap_tex,
-)
+from .common import *  # noqa: F403  (the helpers the figures share: common.__all__)
+from .common import is_figure, new_figure, root_figure
 from .continuation_figure import draw_continuation
 from .dcrit_figure import draw_chain_dcrit, draw_dcrit
 from .design_figure import draw_design

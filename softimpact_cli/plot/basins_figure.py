@@ -12,11 +12,10 @@ from ..config.axes import COUPLING_AXES
 from ..sweep.result import grid_axes, grid_dims, grid_point
 from .common import (
     PARAMETER_TEX,
+    axis_value_text,
     is_figure,
-    multiple_text,
     panel_letter,
     parameter_text,
-    phase_text,
     place_panels,
     root_figure,
     start_text,
@@ -46,15 +45,6 @@ def _halo():
     from matplotlib import patheffects
 
     return [patheffects.withStroke(linewidth=3.5, foreground="w")]
-
-
-def axis_value_text(axis: str, value: float, T: float) -> str:
-    """TeX text of one grid value: phi in multiples of pi, t0 in multiples of T."""
-    if axis == "phi":
-        return phase_text(value)
-    if axis == "t0":
-        return multiple_text(value / T, "T", 1.0)
-    return f"{value:.6g}"
 
 
 def varying_axes(ds, always=("d", "phi")) -> list[str]:

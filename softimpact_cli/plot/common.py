@@ -14,6 +14,11 @@ import numpy as np
 if TYPE_CHECKING:  # matplotlib is imported inside the functions that draw
     pass
 
+# the helpers the figures share, public in ``softimpact_cli.plot`` too
+__all__ = ["DEFAULT_DPI", "PARAMETER_TEX", "axis_value_text", "is_figure", "multiple_text",
+           "new_figure", "panel_letter", "parameter_text", "phase_text", "pi_ticks",
+           "place_panels", "root_figure", "save", "start_text", "start_time", "wrap_tex"]
+
 DEFAULT_DPI = 150
 # TeX symbols of the parameters named in a result's ``parameters`` attribute
 PARAMETER_TEX = {"c": "c", "k1": "k_1", "k2": "k_2", "F": "F", "w": r"\omega", "d": "d",
@@ -111,6 +116,16 @@ def multiple_text(x: float, symbol: str = r"\pi", unit: float = math.pi,
 def phase_text(phi: float) -> str:
     """A phase in TeX: a multiple of pi where it is one (``0.573\\pi``), else radians."""
     return multiple_text(float(phi))
+
+
+def axis_value_text(axis: str, value: float, T: float) -> str:
+    """TeX text of one grid value: phi in multiples of pi, t0 in multiples of T (the
+    forcing period)."""
+    if axis == "phi":
+        return phase_text(value)
+    if axis == "t0":
+        return multiple_text(value / T, "T", 1.0)
+    return f"{value:.6g}"
 
 
 def start_time(ds, index=None) -> tuple[str, float | None]:

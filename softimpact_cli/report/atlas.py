@@ -50,10 +50,10 @@ def format_atlas(ds) -> str:
              f"{len(s['codim2'])} codimension-two points"]
     for c in s["curves"]:
         pts = np.array(c["points"])
+        spans = ", ".join(f"{name} {column.min():.6g}..{column.max():.6g}"
+                          for name, column in zip((a, b), pts.T, strict=True))
         lines.append(f"  {c['kind']:15s} {c['orbit']:20s} p={c['periods']} {len(pts):4d} points, "
-                     f"{a} {pts[:, 0].min():.6g}..{pts[:, 0].max():.6g}, "
-                     f"{b} {pts[:, 1].min():.6g}..{pts[:, 1].max():.6g}; ends: "
-                     f"{c['ends'][0]} / {c['ends'][1]}")
+                     f"{spans}; ends: {c['ends'][0]} / {c['ends'][1]}")
     for k in s["codim2"]:
         lines.append(f"  {k['kind']:15s} on {k['orbit']} ({k['curve']}): {a} = "
                      f"{k['point'][0]:.8g}, {b} = {k['point'][1]:.8g}")

@@ -36,6 +36,8 @@ def load(text: str | None = None) -> list[dict]:
                 raise ValueError(f"statement {sid}: rule 'none' needs why")
         elif e.get("check") not in CHECKS:
             raise ValueError(f"statement {sid}: check {e.get('check')!r} is not in checks.py")
+        if "reading" in e and (not isinstance(e["reading"], str) or not e["reading"]):
+            raise ValueError(f"statement {sid}: reading must be a text")
         if e["rule"] in ("value", "count", "names", "share") and "study" not in e:
             raise ValueError(f"statement {sid}: rule {e['rule']!r} needs the study's value")
     return sorted(entries, key=lambda e: int(e["id"][1:]))

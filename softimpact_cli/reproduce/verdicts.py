@@ -68,8 +68,9 @@ def verdict(statement: dict, m: Measure) -> tuple[str, str]:
     """(verdict, explanation text) of a statement given softimpact's measure."""
     rule, study = statement["rule"], statement.get("study")
     precision = float(statement.get("precision", 0.0))
+    note = "; ".join(filter(None, [statement.get("reading", ""), m.note]))
     if agrees(rule, study, precision, m):
-        return REPRODUCED, m.note
+        return REPRODUCED, note
     tried = []
     explaining = []
     for alt in m.alternatives:
@@ -79,7 +80,7 @@ def verdict(statement: dict, m: Measure) -> tuple[str, str]:
         tried.append(f"{alt.label}: {alt.shown} ({said}; run {', '.join(alt.runs)})")
         if ok and not alt.caveat:
             explaining.append(alt)
-    text = "; ".join(filter(None, [m.note, *tried]))
+    text = "; ".join(filter(None, [note, *tried]))
     if explaining:
         return EXPLAINED, text
     if m.pending:

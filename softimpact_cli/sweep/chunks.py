@@ -104,6 +104,17 @@ class SweepContext:
         return values, axes["t0"]
 
 
+def _orbit_code(orbit: np.ndarray, is_impacting: bool, point: int, catalogue: Catalogue,
+                impacting: ImpactingOrbits, names: dict[str, int], label_tol: float) -> int:
+    """The label code of a periodic ``orbit`` (section points (q, dim)) found at grid
+    ``point``, by either stage: its catalogue label, or for an impacting orbit its number
+    among this chunk's distinct impacting orbits of that period."""
+    label = label_orbit(catalogue, orbit, is_impacting, label_tol)
+    if is_impacting:
+        label = impacting.label(point, orbit)
+    return code_of(label, names)
+
+
 def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     """Classify and label flat indices [start, stop).
 
@@ -164,12 +175,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
             how = BY_CELLS
             period, contacts, max_pen = summary[code]
         elif cls.status == CONVERGED:
-            label = label_orbit(catalogue, cls.orbit, cls.impacting, ctx.label_tol)
-            if cls.impacting:
-                label = impacting.label(point, cls.orbit)
-            code = code_of(label, names)
-            if (point, code) not in orbits:
-                orbits[(point, code)] = (flat, cls.orbit)
+            code = _orbit_code(cls.orbit, cls.impacting, point, catalogue, impacting, names,
+                               ctx.label_tol)
+            orbits.setdefault((point, code), (flat, cls.orbit))
             period, contacts, max_pen = cls.period, cls.contacts, cls.max_penetration
             summary.setdefault(code, (period, contacts, max_pen))
         else:
@@ -184,12 +192,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
                 code = label_code_of_status(status)
             elif follow.outcome == PERIODIC:
                 status, how = CONVERGED, BY_SECTION
-                label = label_orbit(catalogue, follow.orbit, follow.impacting, ctx.label_tol)
-                if follow.impacting:
-                    label = impacting.label(point, follow.orbit)
-                code = code_of(label, names)
-                if (point, code) not in orbits:
-                    orbits[(point, code)] = (flat, follow.orbit)
+                code = _orbit_code(follow.orbit, follow.impacting, point, catalogue, impacting,
+                                   names, ctx.label_tol)
+                orbits.setdefault((point, code), (flat, follow.orbit))
                 period, contacts, max_pen = len(follow.orbit), follow.contacts, follow.max_g
             elif follow.outcome == RECURRENT:  # named by the parent (second_stage.relabel)
                 how = BY_SECTION

@@ -42,6 +42,8 @@ def test_a_duplicate_or_malformed_entry_is_refused():
         load(entry.replace('"holds"', '"value"'))
     with pytest.raises(ValueError, match="needs why"):
         load(entry.replace('"holds"', '"none"'))
+    with pytest.raises(ValueError, match="S1: reading must be a text"):
+        load(entry + "reading = 3\n")
 
 
 def test_select_reads_lists_and_ranges_and_refuses_unknown_ids():

@@ -1,6 +1,7 @@
 """Verdict rules on synthetic values: agreement within the study's precision, and an
 explanation counted only when its own run agrees."""
 
+from softimpact_cli.reproduce.statements import load
 from softimpact_cli.reproduce.verdicts import (
     EXPLAINED,
     REPRODUCED,
@@ -61,3 +62,19 @@ def test_an_explanation_with_a_caveat_is_reported_but_not_counted():
     alt = Measure(3, "3", runs=("r",), label="sign flipped", caveat="contradicts figure 7")
     v, why = verdict(st, Measure(2, "2", alternatives=[alt]))
     assert v == UNEXPLAINED and "agrees, not counted: contradicts figure 7" in why
+
+
+def test_a_statements_reading_comes_first_in_the_explanation():
+    """The reading of a statement's loose words lives in statements.toml (key
+    ``reading``), not in its check: every verdict's explanation starts with it."""
+    st = {"rule": "holds", "reading": "'around d = 10' read as within 20%"}
+    assert verdict(st, Measure(True, "yes", note="mirrored")) == (
+        REPRODUCED, "'around d = 10' read as within 20%; mirrored")
+    assert verdict(st, Measure(False, "no"))[1] == "'around d = 10' read as within 20%"
+    assert verdict({"rule": "holds"}, Measure(True, "yes"))[1] == ""
+
+
+def test_the_moved_readings_are_in_the_statements():
+    readings = {s["check"]: s["reading"] for s in load() if "reading" in s}
+    assert readings["dcrit_mixed_mirrored"].startswith("'around d = 10' read as")
+    assert readings["fig09_velocity_rows"].startswith("'no qualitative change' read as")

@@ -154,8 +154,7 @@ def fig07_impacting_small(st, runs):
     ok = max(widths) < 1.0 and max(shares) < 0.5
     return Measure(ok, "impacting ranges after destruction "
                    + ", ".join(f"{w:.2f}" for w in widths) + "; impacting basin shares "
-                   + ", ".join(_pct(s) for s in shares), ("fig07", "fig07_basins"),
-                   note="'small' read as < 1 in d, 'not dominant' as < 50% of the plane")
+                   + ", ".join(_pct(s) for s in shares), ("fig07", "fig07_basins"))
 
 
 def _coexist(run: str, want: bool, **where):
@@ -230,9 +229,7 @@ def fig09_velocity_rows(st, runs):
     ok = rows.min() > 0.0 and rows.max() < 1.0
     return Measure(ok, f"share of the period-2 basin per velocity row: {_pct(rows.min())} "
                    f"to {_pct(rows.max())} (no row without either attractor); boundary "
-                   f"box-counting dimension {dim:.2f}", ("fig09",),
-                   note="'no qualitative change' read as: no velocity row where one "
-                   "attractor is absent")
+                   f"box-counting dimension {dim:.2f}", ("fig09",))
 
 
 @check("reduced_to_one")

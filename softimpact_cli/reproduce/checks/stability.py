@@ -224,8 +224,7 @@ def fig15a_fluctuations(st, runs):
     ok = half <= 2 * st["study"]
     return Measure(ok, f"median step-to-step change {_pct(np.median(jumps))}, largest "
                    f"{_pct(jumps.max())}; mean 95% Wilson half-width {_pct(half)}",
-                   ("fig15a",), note="'around 2%' compared with the sampling half-width "
-                   "(within twice 2%)")
+                   ("fig15a",))
 
 
 def _impacting_max(st, runs, run: str, t0: str) -> Measure:
