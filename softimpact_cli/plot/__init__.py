@@ -24,6 +24,7 @@ from ..analysis.attributes import attribute_list
 from ..analysis.stability import basin_stability
 from ..report.verification import verification_line
 from ..store.layout import memory_order
+from .atlas_figure import draw_atlas
 from .basins_figure import draw_basins
 from .bifurcation_figure import draw_bifurcation, draw_chain_bifurcation
 from .catalogue_figure import draw_catalogue
@@ -75,6 +76,14 @@ def continuation(ds, ax=None) -> Figure:
     of their Floquet multipliers."""
 
     return draw_continuation(_expect(ds, "continuation"), ax)
+
+
+def atlas(ds, ax=None, *, over=None) -> Figure:
+    """The atlas's curves (fold, period doubling, Neimark-Sacker, grazing) and its
+    codimension-two points in its two parameters, one panel; ``over``: a map or dcrit
+    result of the same rectangle drawn beneath (its counts or d_crit curves)."""
+
+    return draw_atlas(_expect(ds, "atlas"), over, ax)
 
 
 def error_note(fig, ds) -> Figure:
@@ -194,7 +203,7 @@ def fractality(ds, ax=None, *, max_panels: int = 8) -> Figure:
 
 KINDS = ("trajectory", "catalogue", "basins", "stability", "dcrit", "bifurcation", "map",
          "tipping", "fatal_shock", "design", "fractality",
-         "lyapunov", "continuation")  # the functions above, by analysis kind
+         "lyapunov", "continuation", "atlas")  # the functions above, by analysis kind
 
 
 def _expect(ds, kind: str):
