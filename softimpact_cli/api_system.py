@@ -137,6 +137,7 @@ class System:
         """A new System with the parameters ``changes`` (e.g. ``d=8.0``), checked as
         the scene's keys are (the same one-line ConfigError); this one is unchanged.
         Nothing is compiled again: the kernels take the parameters as an array."""
+        self._preset_only("with_")
         sections = {name: dict(body) for name, body in self._scene.sections.items()}
         system_keys = set(self._scene.system.parameter_names) - set(COUPLING_AXES)
         for name, value in changes.items():
@@ -202,8 +203,16 @@ class System:
 
     # ---------------------------------------------------------------- helpers
 
+    def _preset_only(self, what: str) -> None:
+        """One line for what a chain (model = "chain") cannot do here yet."""
+        if self._scene.system.model == "chain":
+            raise ConfigError(f"System.{what}: not yet for model = \"chain\" (a chain's "
+                              "attractors have no names, its scene no dict form); "
+                              "trajectory() works")
+
     def _labelling(self):
         """The sweep's inputs at this point (catalogue, names, workers' context)."""
+        self._preset_only("catalogue and classify")
         if self._inputs is None:
             self._inputs = prepare_inputs(self._point)
         return self._inputs

@@ -16,6 +16,7 @@ import click
 from .cli_options import KindsHelp, cells, dpi_option, plot_option, run_options
 from .cli_terminal import console, exit_with, interruptible, library, quick_exit, user_errors
 from .config import ConfigError
+from .config.examples import MODEL_EXAMPLES
 from .kinds import KINDS, example_scene
 from .kinds.check import check_scene, check_text, over_limit
 from .kinds.scene import load_scene
@@ -186,7 +187,8 @@ def measure(result, output, **options):
 @main.command()
 @click.argument("kind", required=False)
 def example(kind):
-    """Print a minimal commented scene of analysis KIND (no KIND: list the kinds).
+    """Print a minimal commented scene of analysis KIND, or of model "chain" (no KIND: list
+    the kinds).
 
     \b
     Example:
@@ -194,7 +196,11 @@ def example(kind):
     """
 
     if kind is None:
-        click.echo("kinds: " + ", ".join(KINDS) + " (softimpact example KIND)")
+        click.echo("kinds: " + ", ".join(KINDS) + " (softimpact example KIND); models: "
+                   + ", ".join(MODEL_EXAMPLES) + " (softimpact example MODEL)")
+        return
+    if kind in MODEL_EXAMPLES:
+        click.echo(MODEL_EXAMPLES[kind], nl=False)
         return
     if kind not in KINDS:
         click.echo(f"softimpact: error: example: unknown kind {kind!r}; kinds: "

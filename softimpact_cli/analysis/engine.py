@@ -85,7 +85,7 @@ class Problem:
 
     def kernel_args(self):
         sf = self.surfaces
-        return sf.A, sf.b, sf.relevance, sf.contact
+        return sf.A, sf.b, sf.relevance, sf.contacts
 
 
 @dataclass(frozen=True)

@@ -136,7 +136,7 @@ def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
     cls = classify_both_stages(problem, state, t0)
     done = time.perf_counter()
     T = problem.period
-    has_contact = problem.surfaces.contact >= 0
+    has_contact = problem.surfaces.contacts != 0
     ds = xr.Dataset(
         {
             "state": (("time", "variable"), traj.y,

@@ -29,7 +29,8 @@ import numpy as np
 from ..config import IntegratorSettings
 from ..kernels import METHODS, method_traits, orbit
 from ..kernels.numba_cache import SAVES_LOCKED
-from ..systems import REGISTRY, get_system, variational
+from ..systems import REGISTRY, System, get_system, variational
+from ..systems.chain import ChainModel, Kink, Stop, chain_system, chain_values
 from .catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
 from .engine import Problem, RecurrenceCells, classify_state, flow, record_trajectory
 from .lyapunov import lyapunov_spectrum
@@ -50,23 +51,26 @@ def _index_path(dispatcher) -> Path | None:
     return Path(path) if path else None
 
 
-def _scene_kernels(model: str, bodies: int, method: str, catalogue: bool) -> list:
-    """The jitted functions a run of (model, bodies) with ``method`` calls first: the
-    trajectory kernels, the method, the system, and the catalogue's variational equations."""
-    system = get_system(model, bodies)
+def _scene_kernels(model: str, bodies: int, method: str, catalogue: bool,
+                   system=None) -> list:
+    """The jitted functions a run of (model, bodies) (or of ``system``: a chain) with
+    ``method`` calls first: the trajectory kernels, the method, the system, and the
+    catalogue's variational equations."""
+    system = system if system is not None else get_system(model, bodies)
     kernels = [orbit.classify_near, orbit.record, METHODS[method].advance, system.rhs]
-    if catalogue:
+    if catalogue and system.model != "chain":
         body = get_system(model, 1)
         kernels += [orbit.flow, body.rhs, variational.variational_rhs(body)]
     return kernels
 
 
 def missing_kernels(model: str = "duffing", bodies: int = 2, method: str = "auto",
-                    catalogue: bool = True) -> list[str]:
+                    catalogue: bool = True, system=None) -> list[str]:
     """Names of the kernels a run needs whose compiled code is not in the disk cache
-    (``catalogue``: the run finds attractors first, as every kind but trajectory does)."""
+    (``catalogue``: the run finds attractors first, as every kind but trajectory does;
+    ``system``: the run's, when it is not a registered preset)."""
     missing = []
-    for dispatcher in _scene_kernels(model, bodies, method, catalogue):
+    for dispatcher in _scene_kernels(model, bodies, method, catalogue, system):
         path = _index_path(dispatcher)
         if path is not None and not path.is_file():
             missing.append(f"{dispatcher.py_func.__module__}.{dispatcher.__name__}")
@@ -89,7 +93,8 @@ def compile_notice(scene=None) -> str | None:
         method = scene.integrator.resolved_method
         catalogue = (scene.catalogue is not None  # a catalogue kind searches without one
                      or getattr(scene.analysis, "searches_attractors", False))
-    if not missing_kernels(model, bodies, method, catalogue):
+    system = scene.system if scene is not None else None
+    if not missing_kernels(model, bodies, method, catalogue, system):
         return None
     return NOTICE.format(minutes=COLD_MINUTES, folder=cache_folder())
 
@@ -117,7 +122,7 @@ def _steps(model: str | None = None) -> list:
     """(description, callable) pairs covering every kernel signature the CLI uses, for
     one model (None: all)."""
     def run_system(system, method):
-        problem = Problem(system, system.defaults(),
+        problem = Problem(system, defaults_of(system),
                           IntegratorSettings(method=method, max_periods=2, cell_size=0.5))
         state = np.zeros(system.dim)
         state[0] = 0.5
@@ -137,10 +142,16 @@ def _steps(model: str | None = None) -> list:
 
         state = np.zeros(system.dim)
         state[0] = 0.5
-        lyapunov_spectrum(Problem(system, system.defaults(), SHOOTING), state, periods=2,
+        lyapunov_spectrum(Problem(system, defaults_of(system), SHOOTING), state, periods=2,
                           transient=0, segments=2, per_period=2)
 
     steps = []
+    if model in (None, "chain"):  # the family: one set of kernels serves every chain
+        chain = warmup_chain()
+        for method in METHODS:
+            steps.append((f"chain: {method}", lambda m=method: run_system(chain, m)))
+        steps.append(("chain: Lyapunov exponents (Benettin, saltation)",
+                      lambda: run_lyapunov(chain)))
     for (name, bodies), system in sorted(REGISTRY.items()):
         if model is not None and name != model:
             continue
@@ -157,6 +168,24 @@ def _steps(model: str | None = None) -> list:
         steps.append((f"{name} {kind}: Lyapunov exponents (Benettin, saltation)",
                       lambda s=system: run_lyapunov(s)))
     return steps
+
+
+# A chain that reaches every branch of the family's kernels: a kink, a stop between
+# bodies, a wall stop; linear (so method "exact" compiles too). Its values by name.
+_WARMUP_CHAIN = ChainModel(2, kinks=(Kink(1, "left"),),
+                           stops=(Stop(1, 2), Stop(2, side="right", law="no-tension")))
+_WARMUP_VALUES = chain_values(_WARMUP_CHAIN, 1.0, {}, kinks=[{"x": -1.0, "k": 2.0}],
+                              stop_values=[{"d": 1.0}, {"wall": 1.0}])
+
+
+def warmup_chain() -> System:
+    return chain_system(_WARMUP_CHAIN)
+
+
+def defaults_of(system: System) -> dict:
+    """Parameter values to warm a system up with (a chain's have no defaults for its
+    kinks' and stops' positions)."""
+    return dict(_WARMUP_VALUES) if system.model == "chain" else system.defaults()
 
 
 def _timed(what: str, run) -> Step:

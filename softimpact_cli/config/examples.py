@@ -330,3 +330,51 @@ def example(kind: str) -> str:
     if kind == "design":
         header = header.replace("softimpact sweep", "softimpact design")
     return header + EXAMPLES[kind]
+
+CHAIN_EXAMPLE = """\
+# A chain of forced oscillators with stops (softimpact example chain): any number of
+# bodies (1..8), kinks and stops, declared here; no compilation per model.
+# Run: softimpact sweep THIS_FILE.toml   (then: softimpact plot trajectory RESULT.h5 -o FIG.png)
+[system]
+model = "chain"
+bodies = 3                 # 1..8; the state is x1, v1, x2, v2, x3, v3
+m = 1.0                    # per-body keys: one number (every body) or a list of one per body
+c = 0.05                   # viscous damping
+k1 = 1.0                   # restoring force k1 x + k2 x^3 (+ k_xp x^p: k_x2, k_x4 .. k_x9)
+k2 = 0.01
+F = 1.0                    # forcing F sin(w t + phi), one w for every body
+phi = [0.0, "5*pi/8", "5*pi/4"]   # numbers or "a*pi/b"
+w = 1.3
+
+[[stop]]                   # a stop between two bodies: contact while x1 - x2 >= d
+between = [1, 2]
+d = 2.0
+law = "paper"              # {laws}
+k_c = 8.0
+c_c = 10.0
+
+[[stop]]
+between = [2, 3]
+d = 2.0
+
+[[stop]]                   # a wall: contact while x3 >= wall ("right") or x3 <= wall ("left")
+body = 3
+wall = 6.0
+side = "right"
+
+[[kink]]                   # a one-sided spring k (x - x_k), engaged past x on its side
+body = 1
+side = "left"              # engaged while x1 <= x ("left") or x1 >= x ("right")
+x = -5.0
+k = 4.0
+
+[analysis]
+kind = "trajectory"
+state = [1.5, 0.0, -0.5, 1.0, -2.0, 0.0]
+periods = 60
+
+[output]
+path = "results/example_chain.h5"
+""".format(laws=" | ".join(f'"{law.name}"' for law in STOP_LAWS.values()))
+
+MODEL_EXAMPLES: dict[str, str] = {"chain": CHAIN_EXAMPLE}  # softimpact example MODEL

@@ -26,13 +26,40 @@ SECTIONS: dict[str, str] = {
                  "catalogue; cached on disk by its settings).",
     "verification": "How a sweep measures its label error: a share of its trajectories "
                     "rerun at tight settings, compared label by label.",
+    "stop": "`model = \"chain\"` only, one `[[stop]]` table per stop: between two bodies "
+            "(`between`, `d`) or against a wall (`body`, `wall`, `side`), with its law.",
+    "kink": "`model = \"chain\"` only, one `[[kink]]` table per one-sided spring "
+            "k (x - x_k), engaged past its position on its side.",
 }
 
 KEYS: dict[str, dict[str, str]] = {
     "system": {
         "model": 'the restoring force: "duffing" (cubic spring) or "bilinear" (a second '
-                 "spring engaging beyond d1)",
-        "bodies": "1: the left body alone (no stop); 2: the coupled pair",
+                 'spring engaging beyond d1); or "chain": bodies, kinks and stops declared '
+                 "in the scene",
+        "bodies": "1: the left body alone (no stop); 2: the coupled pair; a chain: 1..8",
+        "m": "chain: the mass of each body (one number, or a list of one per body; the "
+             "other body keys too)",
+        **{f"k_x{p}": f"chain: the coefficient of x^{p} in each body's restoring force"
+           for p in (2, 4, 5, 6, 7, 8, 9)},
+    },
+    "stop": {
+        "between": "[i, j]: a stop between bodies i and j, in contact while x_i - x_j >= d",
+        "d": "the gap of a stop between bodies",
+        "body": "a wall stop's body",
+        "wall": "a wall stop's position",
+        "side": '"right": contact while x_body >= wall; "left": while x_body <= wall',
+        "law": 'the stop force law: "paper", "no-tension" or "hunt-crossley" (as [coupling] '
+               "law)",
+        "k_c": "the stop's stiffness",
+        "c_c": "the stop's damping",
+        "exponent": "hunt-crossley: the exponent n",
+    },
+    "kink": {
+        "body": "the body the spring acts on",
+        "side": '"left": engaged while x_body <= x; "right": while x_body >= x',
+        "x": "the position past which the spring engages",
+        "k": "the spring's stiffness",
     },
     "coupling": {
         "law": 'the stop force F_C of the compression delta = x1 - x2 - d: "paper" '

@@ -24,6 +24,7 @@ from ..systems import LAW_KEYS, LAWS, MODELS, STOP_LAWS, System, get_system
 from ..systems.base import SUPPORTED_BODIES, forcing_period_of
 from ..systems.piecewise_linear import exact_refusal
 from .axes import COUPLING_AXES
+from .chain_scene import CHAIN, TABLES, read_chain
 from .limits import (
     MAX_NESTING,
     check_nesting,
@@ -139,9 +140,16 @@ class Scene:
 
 def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
     sec = Section(source, "system", doc.get("system", {}))
-    model = sec.choice("model", None, MODELS) if sec.has("model") else None
+    model = sec.choice("model", None, MODELS + (CHAIN,)) if sec.has("model") else None
     if model is None:
-        raise sec.fail("model", f"is required; one of {', '.join(map(repr, MODELS))}")
+        raise sec.fail("model", f"is required; one of {', '.join(map(repr, MODELS))} or "
+                                f"{CHAIN!r}")
+    if model == CHAIN:
+        return read_chain(source, doc)
+    for name in TABLES:
+        if name in doc:
+            raise ConfigError(f"{source}: [[{name}]]: only for model = {CHAIN!r}; the "
+                              f"{model} model's stop is [coupling]")
     bodies = sec.integer("bodies", 2, min(SUPPORTED_BODIES), max(SUPPORTED_BODIES))
     system = get_system(model, bodies)
     body_params = [p for p in system.parameters if p.name not in COUPLING_AXES]
@@ -155,6 +163,11 @@ def _read_system(source: str, doc: dict) -> tuple[System, dict[str, Any]]:
 
 
 def _read_coupling(source: str, doc: dict, system: System, values: dict[str, Any]) -> None:
+    if system.model == CHAIN:
+        if "coupling" in doc:
+            raise ConfigError(f"{source}: [coupling]: not for model = {CHAIN!r}; its stops are "
+                              "[[stop]] tables, its phases [system] phi")
+        return
     if system.bodies == 1:
         if "coupling" in doc:
             raise ConfigError(f"{source}: [coupling]: only for a pair; [system] bodies = 1 here")
@@ -242,7 +255,14 @@ def _read_output(source: str, doc: dict, base: Path) -> Path:
 
 
 SECTIONS = ("system", "coupling", "integrator", "analysis", "output", "grid",
-            "initial_conditions", "catalogue", "verification")
+            "initial_conditions", "catalogue", "verification", *TABLES)
+
+
+def copy_sections(doc: Mapping[str, Any]) -> dict[str, Any]:
+    """A scene's sections, copied: a table as a dict, an array of tables ([[stop]]) as a
+    list of dicts."""
+    return {name: [dict(t) for t in body] if isinstance(body, list) else dict(body)
+            for name, body in doc.items()}
 
 
 def read_common(text: str, source: str = "<string>"
@@ -259,6 +279,8 @@ def read_common(text: str, source: str = "<string>"
                           f"{MAX_NESTING} levels") from None
     check_nesting(source, doc)
     for name in doc:
+        if name in TABLES:  # arrays of tables ([[stop]]), read with the chain
+            continue
         if name not in SECTIONS or not isinstance(doc[name], dict):
             hint = did_you_mean(name, SECTIONS)
             what = "unknown section" if name not in SECTIONS else "must be a table"

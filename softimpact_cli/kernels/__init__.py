@@ -6,7 +6,8 @@ kernels take the method as a first-class function:
 
     advance(rhs, p, y, t, t_end, surfaces, opts, state, samples) -> status
 
-with the bundles ``surfaces = (A, b, relevance, contact)``, ``state = (istate, fstate,
+with the bundles ``surfaces = (A, b, relevance, contacts)`` (``contacts`` the bit mask of
+the contact surfaces), ``state = (istate, fstate,
 work)`` (``orbit.new_state``) and ``samples = (sample_t, sample_y)``. A method module
 holds its tableau and its hooks (step, error norm, dense output, controller constants)
 and builds ``advance`` with a loop of ``driver`` (see there); adding one is its module

@@ -9,13 +9,24 @@ from .switching import mode_of, poly, poly_max, surface_polynomial, surface_valu
 
 
 @njit(cache=True, inline="always")
-def track_contact(work, A, b, contact, fstate, coef, held):
-    """Raise the running max of the contact function with this step's dense output
-    (``coef`` already holds its polynomial when ``held`` is ``contact``)."""
-    if contact < 0:
-        return
-    if held != contact:
-        surface_polynomial(work, A, b, contact, coef)
+def track_contact(work, A, b, contacts, fstate, coef, held):
+    """Raise the running max of the contact functions (the surfaces in the bit mask
+    ``contacts``) with this step's dense output (``coef`` already holds surface ``held``'s
+    polynomial)."""
+    rest, i = contacts, 0
+    while rest != 0:
+        if rest & 1:
+            if held != i:
+                surface_polynomial(work, A, b, i, coef)
+                held = i
+            raise_running_max(coef, fstate)
+        rest >>= 1
+        i += 1
+
+
+@njit(cache=True, inline="always")
+def raise_running_max(coef, fstate):
+    """``fstate[MAX_G] = max(fstate[MAX_G], max of the polynomial coef on [0, 1])``."""
     # The exact max needs the critical points (root finding); most steps need less, with
     # the same running max bit for bit. On [0, 1], c_k u^k <= max(c_k, 0): a step that
     # cannot raise the max is skipped. |g'(u) - c1| <= 2|c2| + 3|c3| + 4|c4|: where that
@@ -32,35 +43,48 @@ def track_contact(work, A, b, contact, fstate, coef, held):
 
 
 @njit(cache=True)
-def track_contact_at(y, A, b, contact, fstate):
-    """Plain scheme: the contact function is only known at step ends."""
-    if contact < 0:
-        return
-    g = surface_value(A, b, contact, y)
-    if g > fstate[MAX_G]:
-        fstate[MAX_G] = g
+def track_contact_at(y, A, b, contacts, fstate):
+    """Plain scheme: the contact functions are only known at step ends."""
+    rest, i = contacts, 0
+    while rest != 0:
+        if rest & 1:
+            g = surface_value(A, b, i, y)
+            if g > fstate[MAX_G]:
+                fstate[MAX_G] = g
+        rest >>= 1
+        i += 1
+
+
+@njit(cache=True, inline="always")
+def onsets(contacts, old, new):
+    """How many contact surfaces (bit mask ``contacts``) engage from mode ``old`` to
+    ``new``."""
+    rest, count = contacts & new & ~old, 0
+    while rest != 0:
+        count += rest & 1
+        rest >>= 1
+    return count
 
 
 @njit(cache=True)
-def apply_switch(mask, y, A, b, relevance, contact, istate):
-    """Flip the crossed surfaces' bits; count switches and contact onsets."""
+def apply_switch(mask, y, A, b, relevance, contacts, istate):
+    """Flip the crossed surfaces' bits; count switches and contact onsets (``contacts``:
+    the bit mask of the contact surfaces)."""
     old = istate[MODE]
     new = switch_mode(old, mask, y, A, b, relevance)
     istate[MODE] = new
     istate[N_SWITCHES] += 1
-    if contact >= 0 and not (old >> contact) & 1 and (new >> contact) & 1:
-        istate[N_CONTACTS] += 1
+    istate[N_CONTACTS] += onsets(contacts, old, new)
 
 
 @njit(cache=True)
-def plain_mode_update(y, A, b, contact, istate):
+def plain_mode_update(y, A, b, contacts, istate):
     """Plain scheme: the mode is whatever the state says; count contact onsets."""
     old = istate[MODE]
     new = mode_of(y, A, b)
     if new != old:
         istate[N_SWITCHES] += 1
-        if contact >= 0 and not (old >> contact) & 1 and (new >> contact) & 1:
-            istate[N_CONTACTS] += 1
+        istate[N_CONTACTS] += onsets(contacts, old, new)
     istate[MODE] = new
 
 

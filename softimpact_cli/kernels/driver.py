@@ -6,7 +6,8 @@ A method module holds its tableau and its *hooks*, small jitted functions, and b
     advance(rhs, p, y, t, t_end, surfaces, opts, state, samples) -> status
 
 integrates ``y`` in place from ``t`` to exactly ``t_end`` (``surfaces``: the switching
-surfaces ``(A, b, relevance, contact)``; ``state``: ``(istate, fstate, work)`` from
+surfaces ``(A, b, relevance, contacts)``, ``contacts`` the bit mask of the contact surfaces;
+``state``: ``(istate, fstate, work)`` from
 ``orbit.new_state``; ``samples``: ``(sample_t, sample_y)``). The loops are closures over
 the hooks, so every hook call is a static call numba inlines, exactly as if the loop were
 written out in the method's module (a hook passed as a value would cost a call per step

@@ -584,12 +584,16 @@ def exact_loop(p, y, t, t_end, surfaces, opts, state, samples, buf, times):
         last = step_nodes(G, Q, w, h_mode, y, t, h, buf, times)
         best, mask = earliest_crossing(G, R, surfaces, mode, buf, times, last, work)
         end = best if mask != 0 else h
-        if contact >= 0:
-            g_max = contact_maximum(G, R, A_s, b_s, contact, buf, times, last, end,
-                                    fstate[MAX_G])
-            if mask != 0:  # (the step ends on a surface: g there counts too)
-                g_max = max(g_max, surface_at(A_s, b_s, contact, work, 0))
-            fstate[MAX_G] = max(fstate[MAX_G], g_max)
+        rest, i = contact, 0  # (contact: the bit mask of the contact surfaces)
+        while rest != 0:
+            if rest & 1:
+                g_max = contact_maximum(G, R, A_s, b_s, i, buf, times, last, end,
+                                        fstate[MAX_G])
+                if mask != 0:  # (the step ends on a surface: g there counts too)
+                    g_max = max(g_max, surface_at(A_s, b_s, i, work, 0))
+                fstate[MAX_G] = max(fstate[MAX_G], g_max)
+            rest >>= 1
+            i += 1
         if end > 0.0:  # (a grazing restart, leaving right at the start, takes no step)
             if sampling:
                 write_exact_samples(G, buf, times, last, t, end, opts, istate, sample_t,

@@ -96,9 +96,8 @@ def one_period(advance, rhs, p, y, t_start, period, surfaces, opts, state, sampl
     """Advance one forcing period from t_start; (status, contact onsets, max of the contact
     function during it). A period that starts in contact is in contact."""
     istate, fstate, _ = state
-    contact = surfaces[3]
     fstate[MAX_G] = -np.inf
-    if contact >= 0 and (istate[MODE] >> contact) & 1:
+    if istate[MODE] & surfaces[3]:  # (surfaces[3]: the bit mask of contact surfaces)
         fstate[MAX_G] = 0.0
     c_before = istate[N_CONTACTS]
     status = advance(rhs, p, y, t_start, t_start + period, surfaces, opts, state, samples)
@@ -290,7 +289,7 @@ def classify_near(advance, rhs, p, start, surfaces, opts, limits, known, cells, 
         if use_cells:
             run, run_code = follow_cells(y, n, cells, table, run, run_code)
         if use_known:
-            free = contacts[k] == 0 and not (surfaces[3] >= 0 and (istate[MODE] >> surfaces[3]) & 1)
+            free = contacts[k] == 0 and not istate[MODE] & surfaces[3]
             streak, last_k, last_j = follow_known(y, known, free, streak, last_k, last_j)
             if streak >= known.capture_hits:
                 q = known_orbit(known, last_k, last_j, orbit)

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..config import key_docs
-from ..config.examples import EXAMPLES, example
+from ..config.examples import CHAIN_EXAMPLE, EXAMPLES, example
 from ..config.reader import recording
 from ..config.scene import SECTIONS
 from ..systems import LAW_KEYS, MODELS, get_system
@@ -59,6 +59,8 @@ def _scenes() -> list[tuple[str, str]]:
         if old is not None and kind in EXAMPLES and old in EXAMPLES[kind]:
             scenes.append((kind, example(kind).replace(old, new, 1)))
     scenes.append(("stability", LIST_SCENE))
+    chain = CHAIN_EXAMPLE.replace('law = "paper" ', 'law = "hunt-crossley"\nexponent = 1.5 ', 1)
+    scenes.append(("trajectory", chain))  # the chain's [system] keys, [[stop]], [[kink]]
     return scenes
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 from dataclasses import replace
 
+from ..config.chain_scene import CHAIN
 from ..config.reader import ConfigError, Section
 from ..config.scene import (
     QUICK_AXIS,
@@ -18,6 +19,7 @@ from ..config.scene import (
     QUICK_SAMPLES,
     Scene,
     SceneContext,
+    copy_sections,
     read_common,
     read_output,
     read_scene_file,
@@ -33,9 +35,40 @@ __all__ = ["load_scene", "parse_scene", "quick"]
 def _read_analysis(sec: Section, ctx: SceneContext):
     """The [analysis] keys of the scene's kind (each kind reads its own)."""
     kind = sec.choice("kind", "trajectory", tuple(KINDS))  # the registry, at call time
+    if ctx.system.model == CHAIN:
+        refusal = chain_refusal(kind, ctx.doc)
+        if refusal:
+            raise ConfigError(f"{ctx.source}: [analysis] kind = {kind!r}: {refusal}")
     analysis = KINDS[kind].read(sec, ctx)
     sec.finish()
     return analysis
+
+
+# What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
+# yet: said in one line when the scene is read, before anything runs.
+CHAIN_KINDS = ("trajectory", "lyapunov")
+_PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
+               "combinations (L/R names); a chain's are not named yet")
+_PAIR_GAP = "it follows a pair's one stop, x1 - x2 - d"
+CHAIN_REFUSALS = {
+    "catalogue": _PAIR_NAMES, "basins": _PAIR_NAMES, "stability": _PAIR_NAMES,
+    "map": _PAIR_NAMES, "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
+    "fatal_shock": _PAIR_NAMES, "dcrit": _PAIR_GAP, "bifurcation": _PAIR_GAP,
+    "design": _PAIR_GAP, "continuation": _PAIR_GAP,
+}
+
+
+def chain_refusal(kind: str, doc: dict) -> str | None:
+    """Why ``kind`` cannot run on a chain (None: it can)."""
+    if kind not in CHAIN_KINDS:
+        why = CHAIN_REFUSALS.get(kind, "it is written for the presets")
+        return (f"not yet for model = \"chain\" ({why}); a chain runs kind "
+                + " or ".join(map(repr, CHAIN_KINDS)))
+    if kind == "lyapunov" and (doc.get("analysis", {}).get("start") == "catalogue"
+                               or "grid" in doc):
+        return ("on a chain only from a state (start = \"state\", no [grid]): the "
+                "catalogue and the grid axes are a preset's")
+    return None
 
 
 def _read_sections(kind: AnalysisKind, settings, ctx: SceneContext) -> Sections:
@@ -72,7 +105,7 @@ def parse_scene(text: str, source: str = "<string>") -> Scene:
     integrator, text = settle_method(source, doc, text, system, values, grid, integrator)
     return Scene(source=source, text=text, system=system, values=values,
                  integrator=integrator, analysis=analysis, output=output,
-                 sections={k: dict(v) for k, v in doc.items()}, grid=grid,
+                 sections=copy_sections(doc), grid=grid,
                  initial_conditions=initial, catalogue=catalogue,
                  verification=_read_verification(source, doc, analysis.kind))
 

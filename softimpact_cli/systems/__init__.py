@@ -10,6 +10,7 @@ from ..kernels.numba_cache import source_keyed_cache, stabilise
 
 with source_keyed_cache():  # every jitted module of the package, imported here
     from . import bilinear as _bilinear
+    from . import chain as _chain
     from . import duffing as _duffing
     from . import stops as _stops
     from . import variational as _variational
@@ -17,7 +18,7 @@ from .base import COUPLING_PARAMETERS, Parameter, Surfaces, System, check_bodies
 from .bilinear import BILINEAR_BODY, BILINEAR_PAIR
 from .duffing import DUFFING_BODY, DUFFING_PAIR
 
-for _module in (_bilinear, _duffing, _stops, _variational):
+for _module in (_bilinear, _chain, _duffing, _stops, _variational):
     stabilise(_module)
 
 REGISTRY: dict[tuple[str, int], System] = {

@@ -18,9 +18,9 @@ A system is data plus two small jitted functions. The kernels know nothing else 
    a polynomial, so crossings and grazing extrema are located exactly and cheaply.
    A surface may be *relevant* only while another is engaged (the no-tension force
    surface only matters in contact); ``relevance[mode]`` is the mask of surfaces the
-   kernel watches in that mode. ``contact`` is the index of the surface whose engaged
-   side is a contact between bodies (``-1`` for none): contacts and penetration are
-   counted on it.
+   kernel watches in that mode. ``contacts`` is the bit mask of the surfaces whose
+   engaged side is a stop in contact (between bodies or with a wall; ``0`` for none):
+   contact onsets and the maximum penetration are counted over them.
 
 Adding a restoring force means one module that builds a :class:`System` per body count
 (as ``duffing.py`` and ``bilinear.py`` do: a body block of parameters, the stop law's
@@ -28,34 +28,24 @@ coupling block from ``stops.py``) and its lines in ``REGISTRY`` (``systems/__ini
 and in ``variational.py``'s ``_KERNELS``. Adding a stop law is ``stops.py`` alone (its
 docstring says how). Nothing in the kernels changes for either.
 
-Adding a body (three oscillators in a row) is more than a module: the package is written
-for one body or a pair, and refuses other body counts loudly (``SUPPORTED_BODIES`` and
-:func:`check_bodies`, called at registration and where the code branches on the body
-count). It would take:
+Adding a body: any number of bodies is the chain family (``chain.py``: bodies, kinks and
+stops as data, one compiled rhs for every member; ``[system] model = "chain"``). The
+presets keep their body counts (``SUPPORTED_BODIES``, :func:`check_bodies`, called at
+registration and where the code branches on a preset's body count). Where a chain stands:
 
-1. ``systems``: a module with ``state_names`` ``x1, v1, x2, v2, x3, v3``, one contact
-   surface per neighbouring pair (``x1 - x2 - d12``, ``x2 - x3 - d23``), each stop force
-   from ``stops.stop_force`` with its own coupling block (``pack_coupling`` per gap) and
-   its own mode bits (``stops`` reads contact on bit 0, ``CONTACT_BIT``: a second stop
-   needs its contact bit passed like ``law_bit``), and ``SUPPORTED_BODIES`` extended.
-2. ``Surfaces.contact`` is one surface index: the kernels (``kernels/orbit.py``) count
-   contact onsets and the maximum penetration (``max_g``, ``max_penetration``, a known
-   orbit's ``d_crit``) on that surface only. Several stops need a mask of contact
-   surfaces there.
-3. ``config``: ``[system] bodies`` (1..2 today), ``[coupling]`` keys per gap and per
-   body phase, the grid axes (``config/sweep.py`` ``GRID_AXES``: one ``d``, one ``phi``),
-   and the default plane axes of ``[initial_conditions]`` (``x1, x2`` for 4 states).
-4. Labels and catalogues (``analysis/catalogue.py``, ``labels.py``): a pair's label is a
-   combination of a left and a right attractor (``right_attractors`` mirrors the left
-   body's with ``extra["right_sign"]``, ``extra["right_phase"]``; ``label_orbit`` splits
-   an orbit's state at index 2; names like ``L1^1 R1-0^1``). Three bodies need triples,
-   their shifts and names, and the label codes of ``sweep/chunks.py``.
-5. ``kernels/cells.py``: a recurrence cell's key packs at most ``MAX_CELL_DIM`` = 4
-   coordinates into an int64; six need another key (the scene reader refuses
-   ``cell_size > 0`` beyond it).
-6. The pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
-   orbits in ``sweep/runner.py``) use ``x1 - x2 - d``; the trajectory plot draws
-   ``x1 - x2``. Each needs its three-body meaning.
+1. kernels and ``Surfaces``: done. Several contact surfaces (``contacts``, a bit mask);
+   onsets and the maximum penetration are counted over all of them (one running maximum,
+   not one per stop: a per-stop d_crit needs one per stop).
+2. ``config``: done for the scene form (``config/chain_scene.py``); [grid] axes are a
+   preset's (``config/sweep.py``), not yet a chain's named parameters (``stop.1.d``).
+3. Kinds (``kinds/scene.py`` ``CHAIN_KINDS``): trajectory and lyapunov (from a state) run
+   on a chain; the others refuse it in one line when the scene is read, because:
+4. labels and catalogues (``analysis/catalogue.py``, ``labels.py``, ``sweep/chunks.py``)
+   name a body's attractors and a pair's combinations (``L1^1 R1-0^1``);
+5. ``kernels/cells.py`` packs at most ``MAX_CELL_DIM`` coordinates (the scene reader turns
+   cells off beyond it);
+6. the pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
+   orbits in ``sweep/runner.py``) use ``x1 - x2 - d``.
 """
 
 from __future__ import annotations
@@ -98,22 +88,48 @@ class Surfaces:
     A : (n_surfaces, dim) float64
     b : (n_surfaces,) float64
     relevance : (2**n_surfaces,) int64, mask of watched surfaces per mode
-    contact : index of the body-body contact surface, or -1
+    contacts : bit mask of the contact surfaces (bit i: surface i's engaged side is a stop
+        in contact; 0 for none): the kernels count contact onsets and the maximum
+        penetration over them
     names : one short name per surface
     """
 
     A: np.ndarray
     b: np.ndarray
     relevance: np.ndarray
-    contact: int
+    contacts: int
     names: tuple[str, ...]
+
+    @property
+    def contact(self) -> int:
+        """Index of the first contact surface, or -1 when there is none."""
+        return set_bits(self.contacts)[0] if self.contacts else -1
+
+    @property
+    def contact_indices(self) -> tuple[int, ...]:
+        """Indices of the contact surfaces, in order."""
+        return set_bits(self.contacts)
+
+
+def set_bits(mask: int) -> tuple[int, ...]:
+    """The set bits of ``mask``, lowest first."""
+    return tuple(i for i in range(int(mask).bit_length()) if (mask >> i) & 1)
+
+
+MAX_SURFACES = 16  # relevance holds 2**n_surfaces modes: 65536 entries at most
 
 
 def relevance_table(n_surfaces: int, requires: Mapping[int, int]) -> np.ndarray:
     """Mask of watched surfaces per mode.
 
     ``requires[i] = j`` means surface ``i`` is watched only while surface ``j`` is engaged.
+    The table has ``2**n_surfaces`` entries: beyond ``MAX_SURFACES`` a ValueError.
     """
+    if n_surfaces > MAX_SURFACES:
+        raise ValueError(f"{n_surfaces} switching surfaces (stops, kinks and the laws' "
+                         f"surfaces): at most {MAX_SURFACES} are allowed")
+
+
     table = np.zeros(2**n_surfaces, dtype=np.int64)
     for mode in range(2**n_surfaces):
         mask = 0

@@ -6,7 +6,8 @@ left body's second spring is on its left, the right body's on its right:
     x1'' + c x1' + k1 x1 + k2 (x1 + d1) H(-x1 - d1) + F_C = F sin(w t)
     x2'' + c x2' + k1 x2 + k2 (x2 - d1) H( x2 - d1) - F_C = F sin(w t + phi)
 
-The one-body system is the left body. Mirror symmetry: if x(t) solves the left body's
+The pair's equations are systems/pair.py's, with these springs. The one-body system is
+the left body. Mirror symmetry: if x(t) solves the left body's
 equation, -x(t) solves the right body's with forcing shifted by pi. F_C is the stop law's
 force (systems/stops.py), 0 while x1 - x2 < d.
 """
@@ -28,7 +29,8 @@ from .base import (
     pack_parameters,
     relevance_table,
 )
-from .stops import pack_coupling, stop_force, stop_slopes
+from .pair import pair_jacobian_with, pair_rhs_with
+from .stops import pack_coupling
 
 BODY_PARAMETERS = (
     Parameter("c", "1", 0.02, "viscous damping of each body", minimum=0.0),
@@ -44,8 +46,7 @@ CATALOGUE_BOX = {"x": (-3.0, 3.0), "v": (-3.0, 3.0)}
 
 C, K1, K2, F, W, D1 = 0, 1, 2, 3, 4, 5
 STOP = 6  # start of the coupling block (systems/stops.py), whose entries follow:
-D, COS_PHI, SIN_PHI, LAW = STOP + stops.D, STOP + stops.COS_PHI, STOP + stops.SIN_PHI, \
-    STOP + stops.LAW
+D, LAW = STOP + stops.D, STOP + stops.LAW
 
 # surface 0: contact (x1 - x2 - d >= 0); then the springs; then the law's
 LEFT_SPRING_BIT = 2  # surface 1: -x1 - d1 >= 0
@@ -86,42 +87,16 @@ def body_jacobian(t, y, p, mode, jac, dfdt):
 
 @njit(cache=True)
 def pair_rhs(t, y, p, mode, out):
-    wt = p[W] * t
-    s = sin(wt)
-    co = cos(wt)
-    x1 = y[0]
-    v1 = y[1]
-    x2 = y[2]
-    v2 = y[3]
-    fc = stop_force(p, STOP, mode, LAW_BIT, x1 - x2 - p[D], v1 - v2)
-    s1 = p[K2] * (x1 + p[D1]) if mode & LEFT_SPRING_BIT else 0.0
-    s2 = p[K2] * (x2 - p[D1]) if mode & RIGHT_SPRING_BIT else 0.0
-    out[0] = v1
-    out[1] = p[F] * s - p[C] * v1 - p[K1] * x1 - s1 - fc
-    out[2] = v2
-    out[3] = p[F] * (s * p[COS_PHI] + co * p[SIN_PHI]) - p[C] * v2 - p[K1] * x2 - s2 + fc
+    s1 = p[K2] * (y[0] + p[D1]) if mode & LEFT_SPRING_BIT else 0.0
+    s2 = p[K2] * (y[2] - p[D1]) if mode & RIGHT_SPRING_BIT else 0.0
+    pair_rhs_with(t, y, p, mode, STOP, LAW_BIT, s1, s2, out)
 
 
 @njit(cache=True)
 def pair_jacobian(t, y, p, mode, jac, dfdt):
-    kc, cc = stop_slopes(p, STOP, mode, LAW_BIT, y[0] - y[2] - p[D], y[1] - y[3])
-    jac[:, :] = 0.0
-    jac[0, 1] = 1.0
-    jac[2, 3] = 1.0
-    jac[1, 0] = -p[K1] - (p[K2] if mode & LEFT_SPRING_BIT else 0.0) - kc
-    jac[1, 1] = -p[C] - cc
-    jac[1, 2] = kc
-    jac[1, 3] = cc
-    jac[3, 0] = kc
-    jac[3, 1] = cc
-    jac[3, 2] = -p[K1] - (p[K2] if mode & RIGHT_SPRING_BIT else 0.0) - kc
-    jac[3, 3] = -p[C] - cc
-    wt = p[W] * t
-    fw = p[F] * p[W]
-    dfdt[0] = 0.0
-    dfdt[1] = fw * cos(wt)
-    dfdt[2] = 0.0
-    dfdt[3] = fw * (cos(wt) * p[COS_PHI] - sin(wt) * p[SIN_PHI])
+    pair_jacobian_with(t, y, p, mode, STOP, LAW_BIT,
+                       p[K2] if mode & LEFT_SPRING_BIT else 0.0,
+                       p[K2] if mode & RIGHT_SPRING_BIT else 0.0, jac, dfdt)
 
 
 def pair_surfaces(p: np.ndarray) -> Surfaces:
@@ -134,7 +109,7 @@ def pair_surfaces(p: np.ndarray) -> Surfaces:
 
 
 def body_surfaces(p: np.ndarray) -> Surfaces:
-    return Surfaces(np.array([[-1.0, 0.0]]), np.array([-p[D1]]), relevance_table(1, {}), -1,
+    return Surfaces(np.array([[-1.0, 0.0]]), np.array([-p[D1]]), relevance_table(1, {}), 0,
                     ("spring",))
 
 

@@ -1,6 +1,6 @@
 """Duffing oscillators: one body alone, and the pair coupled by a soft stop.
 
-    x1'' + c x1' + k1 x1 + k2 x1^3 + F_C = F sin(w t)
+    x1'' + c x1' + k1 x1 + k2 x1^3 + F_C = F sin(w t)      (the pair: systems/pair.py)
     x2'' + c x2' + k1 x2 + k2 x2^3 - F_C = F sin(w t + phi)
     F_C = the stop law's force (systems/stops.py), 0 while x1 - x2 < d
 
@@ -24,7 +24,8 @@ from .base import (
     pack_parameters,
     relevance_table,
 )
-from .stops import pack_coupling, stop_force, stop_slopes
+from .pair import pair_jacobian_with, pair_rhs_with
+from .stops import pack_coupling
 
 BODY_PARAMETERS = (
     Parameter("c", "1", 0.05, "viscous damping of each body", minimum=0.0),
@@ -80,42 +81,14 @@ def body_jacobian(t, y, p, mode, jac, dfdt):
 
 @njit(cache=True)
 def pair_rhs(t, y, p, mode, out):
-    # One sine and one cosine serve both bodies: sin(wt + phi) = s cos(phi) + c sin(phi).
-    wt = p[W] * t
-    s = sin(wt)
-    co = cos(wt)
-    x1 = y[0]
-    v1 = y[1]
-    x2 = y[2]
-    v2 = y[3]
-    fc = stop_force(p, STOP, mode, LAW_BIT, x1 - x2 - p[D], v1 - v2)
-    out[0] = v1
-    out[1] = p[F] * s - p[C] * v1 - p[K1] * x1 - p[K2] * x1 * x1 * x1 - fc
-    out[2] = v2
-    forcing2 = p[F] * (s * p[COS_PHI] + co * p[SIN_PHI])
-    out[3] = forcing2 - p[C] * v2 - p[K1] * x2 - p[K2] * x2 * x2 * x2 + fc
+    pair_rhs_with(t, y, p, mode, STOP, LAW_BIT, p[K2] * y[0] * y[0] * y[0],
+                  p[K2] * y[2] * y[2] * y[2], out)
 
 
 @njit(cache=True)
 def pair_jacobian(t, y, p, mode, jac, dfdt):
-    kc, cc = stop_slopes(p, STOP, mode, LAW_BIT, y[0] - y[2] - p[D], y[1] - y[3])
-    jac[:, :] = 0.0
-    jac[0, 1] = 1.0
-    jac[2, 3] = 1.0
-    jac[1, 0] = -p[K1] - 3.0 * p[K2] * y[0] * y[0] - kc
-    jac[1, 1] = -p[C] - cc
-    jac[1, 2] = kc
-    jac[1, 3] = cc
-    jac[3, 0] = kc
-    jac[3, 1] = cc
-    jac[3, 2] = -p[K1] - 3.0 * p[K2] * y[2] * y[2] - kc
-    jac[3, 3] = -p[C] - cc
-    wt = p[W] * t
-    fw = p[F] * p[W]
-    dfdt[0] = 0.0
-    dfdt[1] = fw * cos(wt)
-    dfdt[2] = 0.0
-    dfdt[3] = fw * (cos(wt) * p[COS_PHI] - sin(wt) * p[SIN_PHI])
+    pair_jacobian_with(t, y, p, mode, STOP, LAW_BIT, 3.0 * p[K2] * y[0] * y[0],
+                       3.0 * p[K2] * y[2] * y[2], jac, dfdt)
 
 
 def pair_surfaces(p: np.ndarray) -> Surfaces:
@@ -123,7 +96,7 @@ def pair_surfaces(p: np.ndarray) -> Surfaces:
 
 
 def body_surfaces(p: np.ndarray) -> Surfaces:
-    return Surfaces(np.zeros((0, 2)), np.zeros(0), relevance_table(0, {}), -1, ())
+    return Surfaces(np.zeros((0, 2)), np.zeros(0), relevance_table(0, {}), 0, ())
 
 
 DUFFING_BODY = System(

@@ -20,7 +20,6 @@ from math import ceil
 import numpy as np
 
 from ..kernels.exact import HEADER, STEP_PHASE, expm
-from . import get_system
 from .base import System, forcing_period_of
 
 LINEARITY_TOL = 1e-9  # relative: the check on random states and times
@@ -51,7 +50,7 @@ def mode_generator(system: System, params: np.ndarray, mode: int) -> np.ndarray:
         got = M @ y + b + u * np.sin(w * t) + v * np.cos(w * t)
         if np.max(np.abs(got - want)) > LINEARITY_TOL * (1.0 + np.max(np.abs(want))):
             raise ValueError(
-                f"{system.model} {'pair' if system.bodies == 2 else 'body'}: mode {mode}'s "
+                f"{_what(system)}: mode {mode}'s "
                 "right-hand side is not linear in the state (a nonlinear spring or stop "
                 "law); method 'exact' needs a piecewise-linear system")
     G = np.zeros((dim + 3, dim + 3))
@@ -60,6 +59,12 @@ def mode_generator(system: System, params: np.ndarray, mode: int) -> np.ndarray:
     G[dim, dim + 1] = w  # (sin w t)' = w cos w t
     G[dim + 1, dim] = -w  # (cos w t)' = -w sin w t
     return G
+
+
+def _what(system: System) -> str:
+    if system.model == "chain":
+        return f"chain of {system.bodies}"
+    return f"{system.model} {'pair' if system.bodies == 2 else 'body'}"
 
 
 def probe_states(system: System, params: np.ndarray, mode: int):
@@ -93,12 +98,17 @@ def exact_block(system: System, params: np.ndarray) -> np.ndarray:
     parameter point is built once, ~2 ms for the pair's 16 modes)."""
     if system.variational:
         raise ValueError("the variational equations have no exact flow here")
-    return _cached_block(system.model, system.bodies, params.tobytes()).copy()
+    key = (system.model, system.bodies, system.extra.get("chain"))
+    _SYSTEMS.setdefault(key, system)
+    return _cached_block(key, params.tobytes()).copy()
+
+
+_SYSTEMS: dict[tuple, System] = {}  # the systems _cached_block has seen, by identity key
 
 
 @lru_cache(maxsize=256)
-def _cached_block(model: str, bodies: int, packed: bytes) -> np.ndarray:
-    system = get_system(model, bodies)
+def _cached_block(key: tuple, packed: bytes) -> np.ndarray:
+    system = _SYSTEMS[key]
     params = np.frombuffer(packed, dtype=np.float64)
     dim = system.dim
     aug = dim + 3

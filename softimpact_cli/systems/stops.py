@@ -210,5 +210,5 @@ def pair_surfaces(p: np.ndarray, at: int, own_rows: list, own_b: list,
     first = 1 + len(own_rows)
     requires = {first + i: 0 for i in range(len(rows))}
     return Surfaces(np.array(A, dtype=np.float64), np.array(offsets, dtype=np.float64),
-                    relevance_table(len(A), requires), 0,
+                    relevance_table(len(A), requires), 1,
                     tuple(["contact"] + own_names + names))

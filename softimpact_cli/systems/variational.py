@@ -25,7 +25,7 @@ from dataclasses import replace
 import numpy as np
 from numba import njit
 
-from . import bilinear, duffing
+from . import bilinear, chain, duffing
 from .base import Surfaces, System
 
 
@@ -67,19 +67,26 @@ def bilinear_pair_rhs(t, z, p, mode, out):
     extend(bilinear.pair_rhs, bilinear.pair_jacobian, 4, t, z, p, mode, out)
 
 
+@njit(cache=True)
+def chain_variational_rhs(t, z, p, mode, out):
+    """Every chain's (the state's dimension is read from the packed parameters)."""
+    extend(chain.chain_rhs, chain.chain_jacobian, 2 * int(p[chain.N]), t, z, p, mode, out)
+
+
 # (base rhs, base jacobian, variational rhs) of every registered system
 _KERNELS = (
     (duffing.body_rhs, duffing.body_jacobian, duffing_body_rhs),
     (duffing.pair_rhs, duffing.pair_jacobian, duffing_pair_rhs),
     (bilinear.body_rhs, bilinear.body_jacobian, bilinear_body_rhs),
     (bilinear.pair_rhs, bilinear.pair_jacobian, bilinear_pair_rhs),
+    (chain.chain_rhs, chain.chain_jacobian, chain_variational_rhs),
 )
 
-_BUILT: dict[tuple[str, int], System] = {}
+_BUILT: dict[tuple, System] = {}
 
 
 def variational_system(system: System) -> System:
-    key = (system.model, system.bodies)
+    key = (system.model, system.bodies, system.extra.get("chain"))
     if key not in _BUILT:
         _BUILT[key] = _build(system)
     return _BUILT[key]

@@ -82,3 +82,15 @@ def test_missing_kernels_are_named_by_module(tmp_path):
     assert "softimpact_cli.kernels.driver.advance_rodas4" in out
     assert "softimpact_cli.systems.bilinear.pair_rhs" in out
     assert "softimpact_cli.systems.variational.bilinear_body_rhs" in out
+
+
+def test_warm_up_compiles_the_chain_family_once():
+    """One set of steps for every chain (the model is data): each method, the exact flow
+    included (the warm-up chain is piecewise linear), and the Lyapunov exponents."""
+    names = [what for what, _ in warmup._steps()]
+    assert warmup.warmup_chain().piecewise_linear
+    for method in METHODS:
+        assert f"chain: {method}" in names
+    assert "chain: Lyapunov exponents (Benettin, saltation)" in names
+    assert [what for what, _ in warmup._steps("chain")] == [
+        n for n in names if n.startswith("chain: ")]

@@ -98,7 +98,7 @@ def work_surfaces(p: np.ndarray) -> Surfaces:
         A.append([p[KC], p[CC], -p[KC], -p[CC], 0.0])
         b.append(-p[KC] * p[D])
         requires[1] = 0
-    return Surfaces(np.array(A), np.array(b), relevance_table(len(A), requires), 0,
+    return Surfaces(np.array(A), np.array(b), relevance_table(len(A), requires), 1,
                     ("contact", "stop force")[: len(A)])
 
 

@@ -232,7 +232,7 @@ def balance_jacobian(t, y, p, mode, jac, dfdt):  # not used by the explicit kern
 def balance_surfaces(p: np.ndarray) -> Surfaces:
     sf = duffing.pair_surfaces(p)
     return Surfaces(np.hstack([sf.A, np.zeros((sf.A.shape[0], 1))]), sf.b, sf.relevance,
-                    sf.contact, sf.names)
+                    sf.contacts, sf.names)
 
 
 stable_identity(repr((duffing.F, duffing.W, duffing.PHI, duffing.C, duffing.D, duffing.CC,
