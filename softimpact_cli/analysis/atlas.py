@@ -11,9 +11,11 @@ curve.
 
 **Curves.** A seed that lies on a curve already traced (same kind and period; checked by
 Newton where that curve crosses the seed's fixed parameter, ``atlas_curves.on_curve``) is
-skipped; otherwise its curve is followed through the rectangle in both directions
-(``atlas_curves.follow_curve``), its codimension-two points and criticality computed
-(``atlas_curves.codimension_two``).
+skipped; so is a seed beyond the end of such a curve (of the same orbit) that stopped
+at ``max_points``: that curve is extended through the seed (``atlas_curves.extend_to``)
+and its codimension-two points found again. Otherwise its curve is followed through the
+rectangle in both directions (``atlas_curves.follow_curve``), its codimension-two points
+and criticality computed (``atlas_curves.codimension_two``).
 
 Dataset dims: ``curve_point`` (every point of every curve, curve after curve, each in
 order of arclength), ``curve``, ``codim2``, ``parameter`` (a, b), ``variable`` (the
@@ -32,7 +34,15 @@ import xarray as xr
 
 from ..systems import System
 from .atlas_augmented import CURVE_KINDS, AugmentedMap
-from .atlas_curves import Curve, codimension_two, follow_curve, on_curve, seed, stable_beside
+from .atlas_curves import (
+    Curve,
+    codimension_two,
+    extend_to,
+    follow_curve,
+    on_curve,
+    seed,
+    stable_beside,
+)
 from .atlas_normal_form import supercritical
 from .continuation import Settings, StepControl
 from .continuation_branches import Branch, continue_starts, crossings
@@ -144,7 +154,14 @@ def trace_curves(system: System, values: Mapping[str, Any], settings: AtlasSetti
     for s in seeds:
         aug = AugmentedMap(system, values, settings.parameters, s.periods, s.kind)
         known = [c for c in curves if c.kind == s.kind and c.periods == s.periods]
-        if not any(on_curve(aug, c, s.u, s.fixed, tol) for c in known):
+        on_known = any(on_curve(aug, c, s.u, s.fixed, tol) for c in known)
+        extended = None if on_known else next(
+            (c for c in known if c.orbit == s.orbit and extend_to(
+                aug, c, s.u, s.fixed, settings.curve_settings(), settings.ranges[0])), None)
+        if extended is not None:
+            extended.codim2 = []  # the longer curve's, found again
+            codimension_two(aug, extended, tol)
+        if not on_known and extended is None:
             first = seed(aug, s.u, tol, s.fixed)
             if first is not None:
                 curve = follow_curve(aug, first, settings.curve_settings(),

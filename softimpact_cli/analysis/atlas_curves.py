@@ -159,14 +159,27 @@ def _edge_watch(aug: AugmentedMap, bounds_a: tuple[float, float], tol: float):
     return on_point
 
 
+def _watch(aug: AugmentedMap, bounds_a: tuple[float, float], tol: float, stop=None):
+    """The edge watch, then ``stop(leg) -> str`` if given (a non-empty answer ends the leg)."""
+    edge = _edge_watch(aug, bounds_a, tol)
+    if stop is None:
+        return edge
+
+    def on_point(leg: Leg) -> str:
+        return edge(leg) or stop(leg)
+
+    return on_point
+
+
 def _leg(aug: AugmentedMap, first: Point, settings: Settings, bounds_a: tuple[float, float],
-         sign: float) -> Leg:
+         sign: float, stop=None) -> Leg:
     """One direction from ``first`` (its tangent set); a grazing curve is carried across
     the kinks where the orbit's largest maximum of x1 - x2 passes from one local maximum
     to another (there the corrector fails, "step too small"): Newton at a value of a
-    KINK_STEP further on, where g is continuous, and on from there."""
+    KINK_STEP further on, where g is continuous, and on from there. ``stop``: an extra
+    on_point test (see ``continuation.follow``)."""
     aug.refresh(first.value.monodromy)
-    leg = follow(aug, first, settings, sign, _edge_watch(aug, bounds_a, settings.tol))
+    leg = follow(aug, first, settings, sign, _watch(aug, bounds_a, settings.tol, stop))
     n = aug.dim
     for _ in range(MAX_KINKS):
         if aug.kind != "grazing" or leg.end != "step too small":
@@ -191,7 +204,7 @@ def _leg(aug: AugmentedMap, first: Point, settings: Settings, bounds_a: tuple[fl
             t = -t
         aug.refresh(value.monodromy)
         more = follow(aug, Point(u, value, t, float(np.linalg.norm(u - last.u)), k), settings,
-                      sign, _edge_watch(aug, bounds_a, settings.tol))
+                      sign, _watch(aug, bounds_a, settings.tol, stop))
         leg = Leg(leg.points + more.points, more.end)
     return leg
 
@@ -243,6 +256,61 @@ def on_curve(aug: AugmentedMap, curve: Curve, u: np.ndarray, fixed: int, tol: fl
         if same_cycle(orbit_points(problem, there[:n], aug.periods),
                       orbit_points(problem, u[:n], aug.periods), MATCH_TOL * scale):
             return True
+    return False
+
+
+def _passing(u: np.ndarray, fixed: int):
+    """A stop test: the leg's last step crossed u's value of component ``fixed`` near u
+    (within the same 10% as ``on_curve``'s guess)."""
+    scale = max(1.0, float(np.max(np.abs(u))))
+
+    def passed(leg: Leg) -> str:
+        if len(leg.points) < 2:
+            return ""
+        left, right = leg.points[-2].u, leg.points[-1].u
+        x0, x1 = left[fixed] - u[fixed], right[fixed] - u[fixed]
+        if x0 * x1 > 0 or x0 == x1:
+            return ""
+        w = x0 / (x0 - x1)
+        near = float(np.max(np.abs((1 - w) * left + w * right - u))) <= 0.1 * scale
+        return "passed the seed" if near else ""
+
+    return passed
+
+
+def extend_to(aug: AugmentedMap, curve: Curve, u: np.ndarray, fixed: int, settings: Settings,
+              bounds_a: tuple[float, float]) -> bool:
+    """Whether u (n + 2,) lies on the continuation of ``curve`` beyond an end that stopped
+    at ``max_points``; if so the curve is extended in place through u and on (another
+    ``max_points`` at most, its codimension-two points to be recomputed by the caller), so
+    that a seed beyond where a curve stopped does not trace the same curve twice.
+
+    From each such end the curve is followed (at most ``max_points`` points) until it
+    passes u's value of component ``fixed`` near u; the piece is kept only if u lies on it
+    (``on_curve``)."""
+    for end in (1, 0):
+        if curve.ends[end] != "max points":
+            continue
+        last = curve.points[-1] if end == 1 else curve.points[0]
+        sign = 1.0 if end == 1 else -1.0  # the stored tangents point along the curve
+        start = Point(last.u, last.value, sign * last.tangent, 0.0, last.newton)
+        piece = _leg(aug, start, settings, bounds_a, sign, _passing(u, fixed))
+        probe = Curve(curve.kind, curve.orbit, curve.periods, piece.points, ("", ""))
+        if piece.end != "passed the seed" or not on_curve(aug, probe, u, fixed, settings.tol):
+            continue
+        on = piece.points[-1]
+        more = _leg(aug, Point(on.u, on.value, on.tangent, 0.0, on.newton), settings,
+                    bounds_a, sign)
+        added = piece.points[1:] + more.points[1:]
+        if end == 1:
+            curve.points = curve.points + added
+            curve.ends = (curve.ends[0], more.end)
+        else:
+            for p in added:
+                p.tangent = -p.tangent
+            curve.points = added[::-1] + curve.points
+            curve.ends = (more.end, curve.ends[1])
+        return True
     return False
 
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from softimpact_cli.analysis.atlas import AtlasSettings, find_seeds, trace_curves
+from softimpact_cli.analysis.atlas import AtlasSettings, Seed, find_seeds, trace_curves
 from softimpact_cli.analysis.atlas_augmented import AugmentedMap, bordered_test, borders, compound
-from softimpact_cli.analysis.atlas_curves import codimension_two, follow_curve, seed
+from softimpact_cli.analysis.atlas_curves import codimension_two, follow_curve, on_curve, seed
 from softimpact_cli.analysis.atlas_normal_form import criticality, supercritical
 from softimpact_cli.analysis.continuation import Settings, correct
 from softimpact_cli.analysis.continuation_branches import continue_starts
@@ -85,6 +85,33 @@ def test_the_fold_curve_of_a_duffing_body_has_its_cusp_where_harmonic_balance_pu
                         np.array([0.0, 0.0, 1.0, 0.0]), 1e-10)
         assert found is not None and found[0][-1] == pytest.approx(event.point.parameter,
                                                                     abs=1e-7)
+
+
+def test_a_seed_beyond_where_a_curve_stopped_extends_that_curve_instead_of_a_second_copy():
+    """Issue 34's fold curve traced twice: the first copy stopped at max_points before
+    reaching the second seed. Here the small orbit's fold at w = 1.3 seeds a curve cut
+    at 6 points per direction, and a point 10 steps on along that curve seeds again."""
+    (branch,), _ = continue_starts(OrbitMap(BODY, VALUES, "F", 1), [("small", SMALL, 1)], 1.0,
+                                   Settings((0.2, 3.0), step=0.05, max_step=0.3),
+                                   switch_depth=0)
+    fold = next(e.point for e in branch.events if e.kind == "fold")
+    u = np.concatenate([fold.state, [1.3, fold.parameter]])
+    s = AtlasSettings(("w", "F"), ((0.9, 2.0), (0.05, 3.0)), step=0.02, max_step=0.02,
+                      max_points=6, max_period=1, slices=0, switch_depth=0)
+    aug = AugmentedMap(BODY, VALUES, ("w", "F"), 1, "fold")
+    longer = Settings(s.ranges[1], 0.02, 1e-6, 0.02, 12, 1e-9, resolve_turns=False)
+    reference = follow_curve(aug, seed(aug, u, 1e-9, 2), longer, s.ranges[0], "small")
+    beyond = reference.points[-2].u  # 10 steps on; a 6-point direction stops at 5
+    fixed = 2 if abs(beyond[2] - u[2]) > abs(beyond[3] - u[3]) else 3
+    seeds = [Seed("fold", "small", 1, u, 2), Seed("fold", "small", 1, beyond, fixed)]
+    (curve,) = trace_curves(BODY, VALUES, s, seeds)  # before the fix: two curves
+    assert on_curve(aug, curve, beyond, fixed, 1e-9) and on_curve(aug, curve, u, 2, 1e-9)
+    assert len(curve.points) > 11 and curve.ends == ("max points", "max points")
+    steps = np.array([np.linalg.norm(q.u - p.u)
+                      for p, q in zip(curve.points[:-1], curve.points[1:], strict=True)])
+    assert np.all(steps > 0.01)  # one curve in order, no point twice at the join
+    assert np.linalg.norm(curve.points[-1].u - curve.points[0].u) == pytest.approx(
+        steps.sum(), rel=0.05)  # a short piece of curve: nearly straight, no fold back
 
 
 @pytest.fixture(scope="module")
