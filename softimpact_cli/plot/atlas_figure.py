@@ -18,8 +18,9 @@ MARKERS = {"cusp": "^", "fold-flip": "s", "degenerate flip": "D", "1:1 resonance
 
 
 def _underlay(ax, over, a: str, b: str) -> None:
-    """A map's found counts (cells) or a dcrit result's curves, in the atlas's axes."""
-    if over.attrs.get("analysis") == "dcrit":
+    """A map's found counts (cells) or a dcrit result's curves, in the atlas's axes (told
+    apart by what they hold, as the registry asks of modules outside kinds/)."""
+    if "d_crit" in over:
         phi = over["phi"].values
         for k, d in enumerate(over["d_crit"].values):
             x, y = (phi, d) if a == "phi" else (d, phi)

@@ -35,7 +35,7 @@ def test_every_kind_declares_a_figure_and_the_plot_commands_follow_the_registry(
 def test_every_kind_has_a_home_and_sweeps_are_those_without_a_run():
     assert set(ANALYSIS_KINDS) == {"trajectory", "catalogue", "basins", "stability", "dcrit",
                                    "bifurcation", "map", "tipping", "fatal_shock", "design",
-                                   "fractality", "lyapunov", "continuation"}
+                                   "fractality", "lyapunov", "continuation", "atlas"}
     assert SWEEP_KINDS == ("basins", "stability", "map", "tipping")
     for name, kind in KINDS.items():
         assert kind.name == name and kind.description and callable(kind.read)
@@ -54,7 +54,7 @@ def test_every_kind_reads_its_example_and_plans_it(name):
     assert plan.splitlines()[-1].startswith("output: ")
     # a catalogue section is read exactly by the kinds that need one
     assert (scene.catalogue is not None) == (name in (*SWEEP_KINDS, "dcrit", "bifurcation",
-                                                      "continuation",
+                                                      "continuation", "atlas",
                                                       "fatal_shock", "design", "fractality"))
 
 

@@ -49,7 +49,9 @@ def test_pair_code_refuses_a_third_body():
     with pytest.raises(NotImplementedError, match="^build_catalogue"):
         build_catalogue(system, system.defaults(), IntegratorSettings(), np.zeros((1, 2)))
     empty = Catalogue("duffing", {}, (), (), (), {}, 0)
-    with pytest.raises(NotImplementedError, match="^label_orbit"):
+    # labels name n bodies now (issue 32 item 4); an orbit that is not the catalogue's size
+    # is refused by name
+    with pytest.raises(ValueError, match="^label_orbit: an orbit of 6 state variables"):
         label_orbit(empty, np.zeros((1, 6)), impacting=False)
     with pytest.raises(NotImplementedError, match=r"^\[grid\]"):
         read_grid("s.toml", {}, {}, 3, 1.0, lambda axis, v: None)
