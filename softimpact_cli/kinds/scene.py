@@ -58,6 +58,8 @@ CHAIN_REFUSALS = {
     "design": "it chooses a pair's (d, phi, k_c, c_c), not yet a chain's stops",
     "continuation": ("its shooting and events follow a pair's one stop, x1 - x2 - d; on a "
                      "chain kind \"bifurcation\" follows the products along any parameter"),
+    "atlas": ("it seeds its curves from the catalogue's orbits, and a chain has no "
+              "catalogue yet; on a chain kind \"dcrit\" gives each stop's critical values"),
 }
 
 

@@ -139,6 +139,8 @@ def test_example_chain_prints_the_commented_scene():
                          "chain kind \"bifurcation\" follows the products along any "
                          "parameter); a chain runs kind 'trajectory' or 'lyapunov' or "
                          "'dcrit' or 'bifurcation'"),
+    ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
+                  "curves from the catalogue's orbits, and a chain has no catalogue yet"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
                                           "a state"),
 ])
