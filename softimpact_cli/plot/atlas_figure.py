@@ -19,8 +19,8 @@ MARKERS = {"cusp": "^", "fold-flip": "s", "degenerate flip": "D", "1:1 resonance
 
 def _underlay(ax, over, a: str, b: str) -> None:
     """A map's found counts (cells) or a dcrit result's curves, in the atlas's axes (told
-    apart by what they hold, as the registry asks of modules outside kinds/)."""
-    if "d_crit" in over:
+    apart by what they hold: a map has found_count, and also a d_crit table of its own)."""
+    if "found_count" not in over:
         phi = over["phi"].values
         for k, d in enumerate(over["d_crit"].values):
             x, y = (phi, d) if a == "phi" else (d, phi)
