@@ -30,7 +30,7 @@ from ..config import IntegratorSettings
 from ..systems import System
 from ..systems.chain import ChainModel, Kink, chain_system
 from .catalogue import Attractor, body_catalogue, same_cycle
-from .critical_distance import NO_CONTACT_D, TIGHT
+from .critical_distance import NO_CONTACT_D, TIGHT, zero_of_rate
 from .engine import Problem, flow, record_trajectory
 
 BODY_KEYS = ("m", "c", "k1", "k2", "F", "phi")
@@ -135,27 +135,8 @@ def locate_maximum(problem: Problem, t: np.ndarray, y: np.ndarray, k: int, c: np
     fa, fb = float(rate_c @ y[lo]), float(rate_c @ y[hi])
     if not (fa >= 0.0 >= fb):  # a maximum at a sample (or at a kink): keep the sample
         return float(c @ y[k])
-    side = 0
-    for _ in range(100):
-        if b - a < tol:
-            break
-        m = a + fa * (b - a) / (fa - fb) if fa != fb else 0.5 * (a + b)
-        if not a < m < b:
-            m = 0.5 * (a + b)
-        fm = float(rate_c @ state(m))
-        if fm > 0.0:
-            a, fa = m, fm
-            if side == 1:
-                fb *= 0.5
-            side = 1
-        elif fm < 0.0:
-            b, fb = m, fm
-            if side == -1:
-                fa *= 0.5
-            side = -1
-        else:
-            a = b = m
-    return float(c @ state(0.5 * (a + b)))
+    t_star = zero_of_rate(lambda m: float(rate_c @ state(m)), a, b, fa, fb, tol)
+    return float(c @ state(t_star))
 
 
 def critical_values(problem: Problem, product: Product, samples: int = 512) -> np.ndarray:

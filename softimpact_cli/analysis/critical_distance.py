@@ -54,6 +54,15 @@ def locate_maximum(problem: Problem, t: np.ndarray, y: np.ndarray, k: int,
     fa, fb = y[lo, 1] - y[lo, 3], y[hi, 1] - y[hi, 3]
     if not (fa >= 0.0 >= fb):  # maximum at a sample (or a kink): keep the sampled value
         return float(t[k]), float(y[k, 0] - y[k, 2])
+    t_star = zero_of_rate(rate, a, b, fa, fb, tol)
+    s = state(t_star)
+    return float(t_star), float(s[0] - s[2])
+
+
+def zero_of_rate(rate, a: float, b: float, fa: float, fb: float, tol: float) -> float:
+    """The time in [a, b] where ``rate`` (a callable of time; ``fa >= 0 >= fb`` its values at
+    the ends) falls through zero, by the Illinois method to ``tol``: where a maximum of a
+    contact function lies (the pair's and the chain's critical distances)."""
     side = 0
     for _ in range(100):
         if b - a < tol:
@@ -74,9 +83,7 @@ def locate_maximum(problem: Problem, t: np.ndarray, y: np.ndarray, k: int,
             side = -1
         else:
             a = b = m
-    t_star = 0.5 * (a + b)
-    s = state(t_star)
-    return float(t_star), float(s[0] - s[2])
+    return 0.5 * (a + b)
 
 
 def critical_distance(problem: Problem, start: np.ndarray, periods: int, samples: int = 512
