@@ -187,14 +187,15 @@ TIGHT = dict(method="dopri5", rtol=1e-11, atol=1e-13, convergence_tol=1e-9,
              max_periods=6000, capture_tol=0.0, cell_size=0.0)
 
 
-def plane_scene(name: str, resolution: int, integrator: dict | None = None):
-    """Figure plane ``name`` (a key of PLANES) at ``resolution`` x ``resolution``, t0 = 0,
-    with ``integrator`` keys written into its [integrator] section."""
+def plane_scene(name: str, resolution: int, integrator: dict | None = None,
+                planes: dict | None = None):
+    """Figure plane ``name`` (a key of ``planes``, default PLANES) at ``resolution`` x
+    ``resolution``, t0 = 0, with ``integrator`` keys written into its [integrator] section."""
     import tomllib
 
     from softimpact_cli.config.toml_text import toml_text
 
-    path, panel = PLANES[name]
+    path, panel = (PLANES if planes is None else planes)[name]
     doc = tomllib.loads((ROOT / path).read_text())
     if panel is not None:
         doc.pop("grid", None)

@@ -21,15 +21,12 @@ from __future__ import annotations
 
 import argparse
 import time
-import tomllib
 from dataclasses import replace
 
 import numpy as np
-from _common import ROOT, WORKERS, load, sample_points
+from _common import WORKERS, load, plane_scene, sample_points
 
 from softimpact_cli.analysis.labels import name_of
-from softimpact_cli.config.toml_text import toml_text
-from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.sweep import executors
 from softimpact_cli.sweep.runner import prepare_inputs
 
@@ -49,14 +46,7 @@ REFERENCE = dict(method="dopri5", rtol=1e-10, atol=1e-12, convergence_tol=1e-7,
 
 def scene_plane(name: str, resolution: int):
     """Scene ``name`` (a key of SCENES) on one panel, ``resolution`` x ``resolution``, t0 = 0."""
-    path, panel = SCENES[name]
-    doc = tomllib.loads((ROOT / path).read_text())
-    if panel is not None:
-        doc.pop("grid", None)
-        doc.setdefault("coupling", {}).update(panel)
-    doc["initial_conditions"]["resolution"] = [resolution, resolution]
-    doc["initial_conditions"].setdefault("t0", 0.0)
-    return parse_scene(toml_text(doc), f"<figure {name}>")
+    return plane_scene(name, resolution, planes=SCENES)
 
 
 def label(ctx, integrator: dict, picks, capture: bool):
