@@ -35,16 +35,18 @@ registration and where the code branches on a preset's body count). Where a chai
 
 1. kernels and ``Surfaces``: done. Several contact surfaces (``contacts``, a bit mask);
    onsets and the maximum penetration are counted over all of them (one running maximum,
-   not one per stop: a per-stop d_crit needs one per stop).
-2. ``config``: done for the scene form (``config/chain_scene.py``); [grid] axes are a
-   preset's (``config/sweep.py``), not yet a chain's named parameters (``stop.1.d``).
-3. Kinds (``kinds/scene.py`` ``CHAIN_KINDS``): trajectory and lyapunov (from a state) run
-   on a chain; the others refuse it in one line when the scene is read, because:
-4. labels and catalogues (``analysis/catalogue.py``, ``labels.py``, ``sweep/chunks.py``)
-   name a body's attractors and a pair's combinations (``L1^1 R1-0^1``);
-5. ``kernels/cells.py`` packs at most ``MAX_CELL_DIM`` coordinates (the scene reader turns
-   cells off beyond it);
-6. the pair-only analyses (``dcrit``, ``bifurcation``, ``design``, the capture of known
+   not one per stop).
+2. ``config``: done for the scene form (``config/chain_scene.py``); the sweep kinds' [grid]
+   axes are a preset's (``config/axes.py``); dcrit and bifurcation on a chain read one
+   named parameter (``stop.1.d``, ``phi.3``: ``config/sweep.py`` ``read_parameter_axis``).
+3. Kinds (``kinds/scene.py`` ``CHAIN_KINDS``): trajectory, lyapunov (from a state), dcrit
+   per stop (``analysis/chain_dcrit.py``) and bifurcation along any parameter
+   (``analysis/chain_bifurcation.py``) run on a chain; the others refuse it in one line
+   when the scene is read, because
+4. the sweep builds a preset's catalogue: the names of n bodies are ready
+   (``analysis/labels.py``, ``catalogue.joint_orbit``, ``combination_names``; recurrence
+   cells up to 16 coordinates in ``kernels/cells.py``), the chain's catalogue is not;
+5. the pair-only analyses (``design``, ``continuation``, ``map``, the capture of known
    orbits in ``sweep/runner.py``) use ``x1 - x2 - d``.
 """
 
