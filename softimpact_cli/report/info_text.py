@@ -82,7 +82,8 @@ def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:
         lines.append(f"{kind_name}: incomplete, {p['chunks_done']} of {p['chunks']} chunks done "
                      f"({100 * p['fraction']:.0f}%); finish with "
                      f"softimpact sweep {summary.get('scene_source')} -o RESULT --resume")
-    if kind is not None and kind.info_lines is not None:
+    finished = "progress" not in summary  # an unfinished sweep's file holds no results yet
+    if finished and kind is not None and kind.info_lines is not None:
         lines += kind.info_lines(ds)
     first = {k: summary[k] for k in ("analysis", "model", "bodies") if k in summary}
     for key, value in {**first, **summary}.items():
@@ -99,7 +100,7 @@ def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:
         elif key == "steps_by_method" and all(isinstance(v, dict) for v in value.values()):
             value = "; ".join(f"{phase}: {text(v)}" for phase, v in value.items())  # per phase
         lines.append(f"{key:28s} {text(value)}")
-    if kind is not None and kind.info_after is not None:
+    if finished and kind is not None and kind.info_after is not None:
         lines += kind.info_after(ds)
     if "orbit" in summary:
         lines.append(f"orbit: {len(summary['orbit'])} section point(s) of "
