@@ -275,10 +275,14 @@ bench: $(STAMP)
 # planes 9, 12(a), 13(a), 14(a) at 100 x 100 against a tight reference, beside the settings
 # before, the study's method and scipy; basin stability, a small sweep, its fixed cost,
 # the integrator's overhead (results/bench/targets.md; about 30 min on 2 cores, references
-# cached). TARGET_ARGS="--cold" also times a cold compile. bench-settings: the measurement
-# behind the defaults (candidate settings on the same planes).
+# cached). TARGET_ARGS="--cold" also times a cold compile. Then the chain family's targets
+# (issue 32: presets vs their chain form, a 6-body chain, a never-seen model's first run,
+# a 3-body chain's stability and basin plane, the install's compile CPU of the presets and
+# of the family apart; results/bench/chain_targets.md; CHAIN_TARGET_ARGS="--only six,fresh").
+# bench-settings: the measurement behind the defaults (candidate settings on the same planes).
 bench-targets: $(STAMP)
 	$(PY) benchmarks/bench_targets.py $(TARGET_ARGS)
+	$(PY) benchmarks/bench_chain_targets.py $(CHAIN_TARGET_ARGS)
 
 bench-settings: $(STAMP)
 	$(PY) benchmarks/bench_settings.py $(SETTINGS_ARGS)

@@ -81,6 +81,7 @@ def plane(problem, n):
 
 
 def compare(name, preset_run, chain_run, repeats):
+    """Best CPU seconds of each form and whether their outcomes agree (printed as a row)."""
     preset_run(), chain_run()  # warm-up: compile
     best_p, best_c = np.inf, np.inf
     for _ in range(repeats):
@@ -89,6 +90,7 @@ def compare(name, preset_run, chain_run, repeats):
         best_p, best_c = min(best_p, t_p), min(best_c, t_c)
     same = "same" if _same(out_p, out_c) else "DIFFERENT"
     print(f"| {name} | {best_p:.3f} | {best_c:.3f} | {best_p / best_c:.3f} | {same} |")
+    return best_p, best_c, same
 
 
 def _same(a, b):

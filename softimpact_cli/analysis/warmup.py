@@ -231,17 +231,42 @@ def compile_all(verbose: bool = False, workers: int | None = None) -> list[Step]
         return [_report(step, verbose) for step in pool.map(_run_step, range(len(steps)))]
 
 
+MODELS_OPTION = "--models="  # one group of kernels: --models=duffing,bilinear or chain
+
+
+def _models(args: list[str]) -> list[str] | None:
+    """The models of ``--models=a,b`` (None: every model), or a SystemExit naming the
+    allowed ones."""
+    given = [a[len(MODELS_OPTION):] for a in args if a.startswith(MODELS_OPTION)]
+    if not given:
+        return None
+    allowed = sorted({name for name, _ in REGISTRY} | {"chain"})
+    models = [m for text in given for m in text.split(",") if m]
+    unknown = [m for m in models if m not in allowed]
+    if unknown or not models:
+        raise SystemExit(f"--models: unknown model {', '.join(unknown) or '(none)'}; "
+                         f"models: {', '.join(allowed)}")
+    return models
+
+
 def main(argv: list[str] | None = None) -> int:
-    """``python -m softimpact_cli.analysis.warmup``: compile every kernel into the disk cache."""
+    """``python -m softimpact_cli.analysis.warmup [-q] [--serial] [--models=a,b]``: compile
+    every kernel into the disk cache (``--models``: only those models' kernels, one step
+    after another; the benchmarks time the presets' and the chain family's apart)."""
     args = argv if argv is not None else sys.argv[1:]
     quiet = "-q" in args
     workers = 1 if "--serial" in args else None
+    models = _models(args)
     folder = cache_folder()
     if not quiet:
         print(f"softimpact: compiling numerical kernels into {folder} (a few minutes, once "
               "per installed version)", file=sys.stderr, flush=True)
     start = time.perf_counter()
-    compile_all(verbose=not quiet, workers=workers)
+    if models is None:
+        compile_all(verbose=not quiet, workers=workers)
+    else:
+        for model in models:
+            _run_steps(model, verbose=not quiet)
     print(f"softimpact: kernels compiled and cached in {time.perf_counter() - start:.0f} s "
           f"({folder})", file=sys.stderr)
     return 0

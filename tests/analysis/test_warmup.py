@@ -6,6 +6,8 @@ import signal
 import subprocess
 import sys
 
+import pytest
+
 from softimpact_cli.analysis import warmup
 from softimpact_cli.kernels import METHODS
 from softimpact_cli.systems import REGISTRY, get_system
@@ -94,3 +96,13 @@ def test_warm_up_compiles_the_chain_family_once():
     assert "chain: Lyapunov exponents (Benettin, saltation)" in names
     assert [what for what, _ in warmup._steps("chain")] == [
         n for n in names if n.startswith("chain: ")]
+
+
+def test_warm_up_models_option_names_the_models():
+    """``--models=a,b`` picks those models' kernels (the benchmarks time the presets' and
+    the family's compilation apart); an unknown model is one line naming the allowed."""
+    assert warmup._models(["-q"]) is None
+    assert warmup._models(["--models=duffing,bilinear"]) == ["duffing", "bilinear"]
+    assert warmup._models(["--models=chain"]) == ["chain"]
+    with pytest.raises(SystemExit, match="unknown model quartic; models: bilinear, chain"):
+        warmup._models(["--models=chain,quartic"])
