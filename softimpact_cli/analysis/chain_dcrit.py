@@ -155,9 +155,12 @@ def critical_values(problem: Problem, product: Product, samples: int = 512) -> n
 
 def chain_critical_gaps(system: System, values: dict, states: np.ndarray, axis: str,
                         points, samples: int = 512, progress=None,
-                        search: IntegratorSettings = TIGHT) -> xr.Dataset:
+                        search: IntegratorSettings = TIGHT,
+                        integrator: IntegratorSettings = TIGHT) -> xr.Dataset:
     """Every stop's critical value for every product at each value of ``axis`` (a chain
-    parameter; the bodies' attractors are searched again from ``states`` (N, 2) at each).
+    parameter; the bodies' attractors are searched again from ``states`` (N, 2) at each;
+    ``integrator``: the settings of the critical values' flows, ``softimpact check``
+    tightens them).
 
     Returns d_crit(stop, combination, point) (NaN where that point has no such solution),
     combination_label(combination) and the axis values as coordinate ``point``.
@@ -169,7 +172,7 @@ def chain_critical_gaps(system: System, values: dict, states: np.ndarray, axis: 
         at = {**values, axis: float(value)}
         per_body = [body_catalogue(body_problem(system, at, i, search), states)[0]
                     for i in range(1, system.bodies + 1)]
-        problem = Problem(system, uncoupled_values(system, at), TIGHT)
+        problem = Problem(system, uncoupled_values(system, at), integrator)
         for product in products(per_body):
             if product.name not in rows:
                 names.append(product.name)

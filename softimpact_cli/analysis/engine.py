@@ -214,6 +214,22 @@ def flow(problem: Problem, state, t0: float, t1: float) -> tuple[int, np.ndarray
     return int(status), y, float(max_g)
 
 
+def contact_maxima(problem: Problem, state, t0: float, t1: float) -> np.ndarray:
+    """Max of each contact function on [t0, t1] from ``state`` at t0: (n_contacts,), one
+    per contact surface in order (a chain's stops), -inf for none. One flow per surface,
+    each counting that surface alone (the contact mask is bookkeeping only: the flows are
+    the same arithmetic as ``flow``'s, so no new kernel and no new compilation)."""
+    y0 = np.array(state, dtype=np.float64)
+    sf = problem.surfaces
+    out = np.full(len(sf.contact_indices), -np.inf)
+    for k, i in enumerate(sf.contact_indices):
+        _, _, max_g, _ = orbit.flow(problem.advance, problem.system.rhs, problem.params,
+                                    y0.copy(), float(t0), float(t1),
+                                    (sf.A, sf.b, sf.relevance, 1 << i), problem.options())
+        out[k] = max_g
+    return out
+
+
 @dataclass(frozen=True)
 class Trajectory:
     """A recorded trajectory.

@@ -26,7 +26,13 @@ from ..kernels.codes import (
     message,
     outcome,
 )
-from .engine import Classification, Problem, classify_state, record_trajectory
+from .engine import (
+    Classification,
+    Problem,
+    classify_state,
+    contact_maxima,
+    record_trajectory,
+)
 from .nonperiodic import SETTLING, Recurrent, attractor_table, identify, section_spectrum
 from .section_follow import FAILED, PERIODIC, RECURRENT, follow_section
 
@@ -43,7 +49,10 @@ class TwoStageClassification:
     (CONVERGED after a long-period orbit; a recurrent set keeps the first pass's
     UNRESOLVED, as in sweeps); orbit : (period, dim) section points of the periodic
     orbit; periods_used : both stages; second_stage : the follow's outcome or NOT_RUN;
-    table : the attractor table (``nonperiodic.attractor_table``; empty without one).
+    table : the attractor table (``nonperiodic.attractor_table``; empty without one);
+    settled_from (dim,), settled_periods : where the final orbit or attractor can be
+    followed again, and for how many periods (its first section point and its period, or
+    a recurrent set's first located point and its point count; 0: nothing settled).
     """
 
     outcome: str
@@ -60,6 +69,8 @@ class TwoStageClassification:
     second_stage: str
     first: Classification
     table: xr.Dataset = field(default_factory=xr.Dataset)
+    settled_from: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    settled_periods: int = 0
 
 
 def classify_both_stages(problem: Problem, state, t0: float) -> TwoStageClassification:
@@ -75,7 +86,7 @@ def classify_both_stages(problem: Problem, state, t0: float) -> TwoStageClassifi
         return TwoStageClassification(
             **{**first, "period": cls.period, "contacts": cls.contacts,
                "max_penetration": cls.max_penetration, "impacting": cls.impacting,
-               "classified_by": how},
+               "classified_by": how, **_settled(cls.orbit, cls.period)},
             outcome=cls.outcome, message=message(cls.status),
             periods_used=cls.periods_used, second_stage=NOT_RUN)
     follow = follow_section(problem, state, t0, cls.periods_used)
@@ -89,7 +100,7 @@ def classify_both_stages(problem: Problem, state, t0: float) -> TwoStageClassifi
         return TwoStageClassification(
                 **{**first, "status": CONVERGED, "orbit": follow.orbit, "period": q,
                "contacts": follow.contacts, "max_penetration": follow.max_g,
-               "impacting": follow.impacting},
+               "impacting": follow.impacting, **_settled(follow.orbit, q)},
             outcome="converged",
             message=f"converged to a period-{q} orbit of the stroboscopic map after "
                     f"max_periods (followed on the section)")
@@ -117,9 +128,49 @@ def classify_both_stages(problem: Problem, state, t0: float) -> TwoStageClassifi
     return TwoStageClassification(
         **{**first, "label": attractor.name, "orbit": follow.cloud[:0],
            "contacts": follow.contacts, "max_penetration": follow.max_g,
-           "impacting": follow.impacting},
+           "impacting": follow.impacting, **_settled(follow.cloud, len(follow.cloud))},
         outcome=kind, message=why,
         table=attractor_table([attractor], tuple(problem.system.state_names)))
+
+
+def _settled(points: np.ndarray, periods: int) -> dict:
+    """The ``settled_*`` fields: from the first of ``points`` (section points), for
+    ``periods`` periods (none without points)."""
+    if len(points) == 0 or periods <= 0:
+        return {}
+    return {"settled_from": np.array(points[0], dtype=np.float64),
+            "settled_periods": int(periods)}
+
+
+def stop_penetrations(problem: Problem, cls: TwoStageClassification) -> np.ndarray:
+    """(n_stops,) max of each stop's compression over the final orbit (or the located
+    points of a recurrent set), followed again from its first section point (a section
+    time, where the forcing's phase is 0 mod 2 pi); NaN when nothing settled. Their max
+    is the trajectory's ``max_penetration`` (to the convergence tolerance)."""
+    n = len(problem.surfaces.contact_indices)
+    if cls.settled_periods == 0:
+        return np.full(n, np.nan)
+    return contact_maxima(problem, cls.settled_from, 0.0,
+                          cls.settled_periods * problem.period)
+
+
+def stop_descriptions(problem: Problem) -> list[str]:
+    """One short name per stop of a chain: "bodies 1-2", "body 3 / right wall"."""
+    model = problem.system.extra["chain"]
+    return [f"body {s.body} / {s.side} wall" if s.wall else f"bodies {s.body}-{s.other}"
+            for s in model.stops]
+
+
+def per_stop_dataset(problem: Problem, cls: TwoStageClassification) -> xr.Dataset:
+    """A chain's per-stop part of its trajectory result: ``stop_max_penetration`` (stop)."""
+    names = stop_descriptions(problem)
+    return xr.Dataset(
+        {"stop_max_penetration": (
+            ("stop",), stop_penetrations(problem, cls),
+            {"long_name": "max of each stop's compression over the final orbit (>= 0: in "
+                          "contact; < 0: the smallest clearance)", "units": "1"})},
+        coords={"stop": ("stop", np.arange(1, len(names) + 1)),
+                "stop_between": ("stop", names, {"long_name": "what the stop is between"})})
 
 
 def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
@@ -188,4 +239,10 @@ def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
     )
     if cls.table.data_vars:  # the attractor with its exponents, as sweeps store it
         ds = xr.merge([ds, cls.table], combine_attrs="override", compat="override")
+    if "chain" in problem.system.extra:  # several stops: one maximum each
+        ds = xr.merge([ds, per_stop_dataset(problem, cls)], combine_attrs="override",
+                      compat="override")
+        ds["section_max_contact_function"].attrs["long_name"] = (
+            "max over the stops' compressions during the period ending here (> 0: a stop "
+            "compressed)")
     return ds

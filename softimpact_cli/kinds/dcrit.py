@@ -20,7 +20,7 @@ from ..config.reader import ConfigError
 from ..config.scene import forcing_period, thin
 from ..config.sweep import flat_grid, read_grid, read_parameter_axis
 from ..plot import dcrit
-from ..report.compare import compare_dcrit, dcrit_comparison_text
+from ..report.compare import compare_dcrit, dcrit_comparison_text, dcrit_curves
 from ..store.catalogues import scene_catalogue, with_catalogue
 from ..sweep.check import tightened
 from .base import AnalysisKind, PlotOption, PlotSpec, Sections
@@ -156,20 +156,40 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             + f", {a.samples} samples per joint orbit")
 
 
+def _check_chain(scene, phis: np.ndarray, settings) -> dict[str, np.ndarray]:
+    """A chain's critical values at the points ``phis`` of its axis, flows at
+    ``settings``: {"stop s: product": values}."""
+    a, c = scene.analysis, scene.catalogue
+    ds = chain_critical_gaps(scene.system, dict(scene.values),
+                             sample_states(c.box, c.grid, c.random, c.seed), a.axis, phis,
+                             a.samples, integrator=settings)
+    ds.attrs["axis"] = a.axis
+    return dcrit_curves(ds)[2]
+
+
 def check(scene, sample: int, seed: int, result=None) -> dict:
-    """``softimpact check``: d_crit at up to 16 random phases of the scene, at its settings
-    and at tightened ones."""
-    cat = scene_catalogue(scene)
+    """``softimpact check``: d_crit at up to 16 random phases of the scene (a chain: values
+    of its axis), at its settings and at tightened ones."""
     rng = np.random.default_rng(seed)
-    phis = np.sort(rng.choice(np.array(scene.analysis.phis), size=min(sample, 16),
-                              replace=False))
+    phis = np.sort(rng.choice(np.array(scene.analysis.phis),
+                              size=min(sample, 16, len(scene.analysis.phis)), replace=False))
+    chain = isinstance(scene.analysis, ChainCriticalGapsAnalysis)
+    cat = None if chain else scene_catalogue(scene)
     out = {}
     for key, settings in (("scene", TIGHT), ("tight", tightened(TIGHT))):
         start = time.perf_counter()
-        ds = critical_distances(scene.system, dict(scene.values), list(cat.attractors),
-                                   phis, scene.analysis.samples, integrator=settings)
-        out[key] = (ds["d_crit"].values, time.perf_counter() - start)
-    diff = float(np.max(np.abs(out["scene"][0] - out["tight"][0])))
+        if chain:
+            curves = _check_chain(scene, phis, settings)
+        else:
+            ds = critical_distances(scene.system, dict(scene.values), list(cat.attractors),
+                                    phis, scene.analysis.samples, integrator=settings)
+            curves = dict(enumerate(ds["d_crit"].values))
+        out[key] = (curves, time.perf_counter() - start)
+    (scene_curves, _), (tight_curves, _) = out["scene"], out["tight"]
+    both = [k for k in scene_curves if k in tight_curves]
+    diff = max((float(np.nanmax(np.abs(scene_curves[k] - tight_curves[k])))
+                for k in both if np.isfinite(scene_curves[k] - tight_curves[k]).any()),
+               default=0.0)
     return {"kind": "d_crit", "sample": int(phis.size), "max_change": diff,
             "wall_s": out["scene"][1], "tight_wall_s": out["tight"][1],
             "wall_ratio": out["tight"][1] / max(out["scene"][1], 1e-12)}

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..analysis.engine import Problem
 from ..analysis.trajectory import trajectory_dataset
 from ..config.limits import MAX_TRAJECTORY_SAMPLES
@@ -86,6 +88,17 @@ def plan(scene, workers=None, chunk_size=None) -> str:
             f"{size_text(result_bytes(scene))}")
 
 
+def summary(ds) -> dict:
+    """A chain's part of ``info``: each stop's max compression on the final orbit."""
+    if "stop_max_penetration" not in ds:
+        return {}
+    values = ds["stop_max_penetration"].values
+    return {"max_penetration_by_stop": {
+        f"stop {stop} ({between})": None if not np.isfinite(v) else float(v)
+        for stop, between, v in zip(ds["stop"].values.tolist(),
+                                    ds["stop_between"].values.tolist(), values, strict=True)}}
+
+
 PLOT = PlotSpec(
     "Time series, phase portraits and Poincare points of a trajectory RESULT.",
     options=(PlotOption("--last-periods", "last_periods", "Periods drawn strongly as the "
@@ -103,5 +116,5 @@ KEYS = {
 
 KINDS = (AnalysisKind("trajectory", "one trajectory, recorded and classified", read, plan,
                       keys=KEYS,
-                      run=run, result_bytes=result_bytes, plot=PLOT,
+                      run=run, result_bytes=result_bytes, plot=PLOT, summary=summary,
                       variables=("state", "time", "section_state", "section_time", "variable")),)

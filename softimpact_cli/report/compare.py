@@ -117,29 +117,46 @@ def compare_sweeps(a, b, name_a: str, name_b: str) -> dict:
             "changes": changes, "max_share_change": float(largest), "points": shares}
 
 
+def dcrit_curves(ds) -> tuple[str, np.ndarray, dict[str, np.ndarray]]:
+    """(axis name, axis values, {curve name: d_crit along the axis}) of a dcrit result: a
+    pair's combinations along phi, or a chain's (stop, product) pairs along its axis
+    ("stop 2: 1:P1^1 2:P1-0^1 ...")."""
+    labels = [str(n) for n in ds["combination_label"].values]
+    d = ds["d_crit"].values
+    if "stop" in ds["d_crit"].dims:  # a chain: d_crit(stop, combination, point)
+        curves = {f"stop {int(s)}: {name}": d[k, i]
+                  for k, s in enumerate(ds["stop"].values) for i, name in enumerate(labels)}
+        return str(ds.attrs.get("axis", "point")), ds["point"].values, curves
+    return "phi", ds["phi"].values, {name: d[i] for i, name in enumerate(labels)}
+
+
 def compare_dcrit(a, b, name_a: str, name_b: str) -> dict:
-    """d_crit of every combination at every phase: B - A."""
-    _same(a["phi"].values, b["phi"].values, "phase grid (phi)", name_a, name_b)
-    names_a = [str(n) for n in a["combination_label"].values]
-    names_b = [str(n) for n in b["combination_label"].values]
+    """d_crit of every combination (a chain's: every stop's of every product) at every
+    point of the axis: B - A."""
+    axis, points, curves_a = dcrit_curves(a)
+    axis_b, points_b, curves_b = dcrit_curves(b)
+    if axis_b != axis:
+        raise ConfigError(f"{name_b}: its critical values run along {axis_b}, {name_a}'s "
+                          f"along {axis}")
+    _same(points, points_b, f"grid of {axis}", name_a, name_b)
     rows = {}
-    for name in sorted(set(names_a) | set(names_b)):
-        if name not in names_a or name not in names_b:
-            rows[name] = {"in": name_a if name in names_a else name_b}
+    for name in sorted(set(curves_a) | set(curves_b)):
+        if name not in curves_a or name not in curves_b:
+            rows[name] = {"in": name_a if name in curves_a else name_b}
             continue
-        da = a["d_crit"].values[names_a.index(name)]
-        db = b["d_crit"].values[names_b.index(name)]
-        diff = np.abs(db - da)
+        diff = np.abs(curves_b[name] - curves_a[name])
         worst = int(np.nanargmax(diff)) if np.isfinite(diff).any() else 0
         rows[name] = {"max_change": float(np.nanmax(diff)) if np.isfinite(diff).any() else 0.0,
-                      "at_phi": float(a["phi"].values[worst])}
+                      "at": float(points[worst])}
     largest = max((r.get("max_change", 0.0) for r in rows.values()), default=0.0)
     only = sorted(n for n, r in rows.items() if "in" in r)
-    return {"combinations": rows, "max_d_change": float(largest), "only_in_one": only}
+    return {"axis": axis, "combinations": rows, "max_d_change": float(largest),
+            "only_in_one": only}
 
 
 def compare_bifurcations(a, b) -> dict:
-    """Destruction point (d) of every branch both results follow: B - A."""
+    """Destruction point (in the followed parameter) of every branch both results
+    follow: B - A."""
     da = {str(n): float(v) for n, v in zip(a["branch_name"].values, a["destroyed_at"].values,
                                            strict=True)}
     db = {str(n): float(v) for n, v in zip(b["branch_name"].values, b["destroyed_at"].values,
@@ -159,8 +176,8 @@ def compare_bifurcations(a, b) -> dict:
     numeric = [abs(r["change"]) for r in rows.values() if isinstance(r.get("change"), float)]
     one_sided = [n for n, r in rows.items() if not isinstance(r.get("change", 0.0), float)
                  or "change" not in r]
-    return {"branches": rows, "max_d_change": max(numeric, default=0.0),
-            "differ_in_kind": one_sided}
+    return {"parameter": str(a.attrs.get("parameter", "d")), "branches": rows,
+            "max_d_change": max(numeric, default=0.0), "differ_in_kind": one_sided}
 
 
 def limits_exceeded(report: dict, max_label_change: float | None = None,
@@ -222,20 +239,24 @@ def sweep_comparison_text(report: dict, max_points: int) -> list[str]:
 
 def dcrit_comparison_text(report: dict) -> list[str]:
     """The largest d_crit change per combination."""
+    width = max([16] + [len(n) for n in report["combinations"]])
+    at = f"at {report.get('axis', 'phi')}"
     lines = [f"largest d_crit change: {report['max_d_change']:.4g}",
-             f"  {'combination':16s} {'max |B - A|':>12s} {'at phi':>8s}"]
+             f"  {'combination':{width}s} {'max |B - A|':>12s} {at:>8s}"]
     for name, r in report["combinations"].items():
         if "in" in r:
-            lines.append(f"  {name:16s} only in {r['in']}")
+            lines.append(f"  {name:{width}s} only in {r['in']}")
         else:
-            lines.append(f"  {name:16s} {r['max_change']:12.4g} {r['at_phi']:8.4f}")
+            lines.append(f"  {name:{width}s} {r['max_change']:12.4g} {r['at']:8.4f}")
     return lines
 
 
 def bifurcation_comparison_text(report: dict) -> list[str]:
     """The destruction point of each branch in both results."""
+    width = max([16] + [len(n) for n in report["branches"]])
+    head = f"A: destroyed at {report.get('parameter', 'd')}"
     lines = [f"largest change of a destruction point: {report['max_d_change']:.4g}",
-             f"  {'branch':16s} {'A: destroyed at d':>18s} {'B':>10s} {'B - A':>10s}"]
+             f"  {'branch':{width}s} {head:>18s} {'B':>10s} {'B - A':>10s}"]
 
     def at(v):
         return "-" if v is None else ("never" if not np.isfinite(v) else f"{v:.4g}")
@@ -243,5 +264,6 @@ def bifurcation_comparison_text(report: dict) -> list[str]:
     for name, r in report["branches"].items():
         change = r.get("change", "branch in one only")
         change = f"{change:+.4g}" if isinstance(change, float) else change
-        lines.append(f"  {name:16s} {at(r['a']):>18s} {at(r['b']):>10s} {change:>10s}")
+        lines.append(f"  {name:{width}s} {at(r['a']):>{max(18, len(head))}s} "
+                     f"{at(r['b']):>10s} {change:>10s}")
     return lines

@@ -110,7 +110,7 @@ def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:
         lines.append("catalogue:")
         lines += [f"  {line}" for line in format_catalogue(ds).splitlines()]
     if "branches" in summary:
-        lines += _branch_table(summary["branches"])
+        lines += _branch_table(summary["branches"], str(ds.attrs.get("parameter", "d")))
     if "d_crit" in summary:
         lines += _dcrit_table(summary["d_crit"])
     if "nonperiodic" in summary:
@@ -125,14 +125,19 @@ def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:
     return "\n".join(lines)
 
 
-def _branch_table(branches: dict) -> list[str]:
+def _branch_table(branches: dict, parameter: str = "d") -> list[str]:
+    """Each branch's destruction point and impacting range in the followed ``parameter``."""
     width = max([len(n) for n in branches] + [6])
-    out = [f"{'branch':{width}s}  {'destroyed at d':>14s}  {'falls to':16s}  impacting for d in"]
+    head = f"destroyed at {parameter}"
+    at_width = max(14, len(head))
+    out = [f"{'branch':{width}s}  {head:>{at_width}s}  {'falls to':16s}  impacting for "
+           f"{parameter} in"]
     for name, b in branches.items():
         lo, hi = b["impacting_range"]
         at = "never" if b["destroyed_at"] is None else f"{b['destroyed_at']:.6g}"
         impacting = "-" if lo is None else f"[{lo:.6g}, {hi:.6g}]"
-        out.append(f"{name:{width}s}  {at:>14s}  {b['falls_to'] or '-':16s}  {impacting}")
+        out.append(f"{name:{width}s}  {at:>{at_width}s}  {b['falls_to'] or '-':16s}  "
+                   f"{impacting}")
     return out
 
 
