@@ -162,15 +162,30 @@ def stop_descriptions(problem: Problem) -> list[str]:
 
 
 def per_stop_dataset(problem: Problem, cls: TwoStageClassification) -> xr.Dataset:
-    """A chain's per-stop part of its trajectory result: ``stop_max_penetration`` (stop)."""
+    """A chain's per-stop part of its trajectory result: ``stop_max_penetration`` (stop),
+    and what each stop is: its compression is ``stop_sign * (x_i - x_j) - stop_offset``
+    with i = ``stop_body``, j = ``stop_other`` (0: a wall, x_0 = 0)."""
+    model = problem.system.extra["chain"]
     names = stop_descriptions(problem)
+    sf = problem.surfaces
+    rows = [sf.A[i] for i in sf.contact_indices]  # d delta / d y of each stop
+    sign = np.array([row[2 * (stop.body - 1)] for row, stop in zip(rows, model.stops,
+                                                                    strict=True)])
+    offset = np.array([-sf.b[i] for i in sf.contact_indices])
     return xr.Dataset(
         {"stop_max_penetration": (
             ("stop",), stop_penetrations(problem, cls),
             {"long_name": "max of each stop's compression over the final orbit (>= 0: in "
                           "contact; < 0: the smallest clearance)", "units": "1"})},
         coords={"stop": ("stop", np.arange(1, len(names) + 1)),
-                "stop_between": ("stop", names, {"long_name": "what the stop is between"})})
+                "stop_between": ("stop", names, {"long_name": "what the stop is between"}),
+                "stop_body": ("stop", np.array([s.body for s in model.stops])),
+                "stop_other": ("stop", np.array([s.other for s in model.stops]),
+                               {"long_name": "the other body (0: a wall)"}),
+                "stop_sign": ("stop", sign),
+                "stop_offset": ("stop", offset, {
+                    "long_name": "compression = stop_sign * (x_body - x_other) - "
+                                 "stop_offset (x_0 = 0: a wall)", "units": "1"})})
 
 
 def trajectory_dataset(problem: Problem, state, t0: float, periods: int,

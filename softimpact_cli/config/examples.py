@@ -356,16 +356,18 @@ c_c = 10.0
 [[stop]]
 between = [2, 3]
 d = 2.0
+law = "no-tension"         # k_c, c_c: 8 and 10 unless given
 
 [[stop]]                   # a wall: contact while x3 >= wall ("right") or x3 <= wall ("left")
 body = 3
-wall = 6.0
+wall = 1.5
 side = "right"
+law = "hunt-crossley"
 
 [[kink]]                   # a one-sided spring k (x - x_k), engaged past x on its side
 body = 1
 side = "left"              # engaged while x1 <= x ("left") or x1 >= x ("right")
-x = -5.0
+x = -1.5
 k = 4.0
 
 [analysis]

@@ -52,7 +52,8 @@ if TYPE_CHECKING:  # matplotlib is imported inside the functions that draw
 def trajectory(ds, ax=None, *, last_periods: int | None = None) -> Figure:
     """Time series, phase portraits and Poincaré points of a trajectory result
     (``last_periods`` drawn strongly as the steady state; default a quarter, <= 20).
-    Panels: 2 (one body) or 6 (a pair, the last a text summary)."""
+    Panels: 2 (one body), 6 (a pair, the last a text summary) or n + 3 (a chain of n
+    bodies: time series, n phase portraits, the stops' compressions, a summary)."""
 
     return draw_trajectory(_expect(ds, "trajectory"), last_periods, ax)
 

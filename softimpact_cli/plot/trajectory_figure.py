@@ -6,7 +6,16 @@ import numpy as np
 
 from .common import panel_letter, parameter_text, place_panels, root_figure, start_text
 
-BODY_COLOURS = ("#1f77b4", "#d62728")
+BODY_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
+                "#e377c2", "#17becf")  # body k; the first two are the pair's
+
+
+def trajectory_panels(ds) -> int:
+    """How many panels the figure of trajectory result ``ds`` has: 2 (one body), 6 (a
+    pair), n + 3 (a chain of n bodies: time series, n phase portraits, the stops'
+    compressions, a summary)."""
+    n = ds.sizes["variable"] // 2
+    return n + 3 if "stop_max_penetration" in ds else (6 if n == 2 else 2)
 
 
 def draw_trajectory(ds, last_periods: int | None = None, ax=None):
@@ -15,8 +24,10 @@ def draw_trajectory(ds, last_periods: int | None = None, ax=None):
     Panels: displacements against t/T with the section points; one phase portrait per
     body (transient faint, last ``last_periods`` periods strong, section points as dots);
     for a pair, the contact function x1 - x2 - d against t/T, the configuration plane
-    and a text summary. ``ax``: 2 Axes (one body) or 6 (a pair) in that order, or a
-    Figure (see ``plot``).
+    and a text summary; for a chain, every stop's compression against t/T and a text
+    summary with each stop's maximum. ``ax``: :func:`trajectory_panels` Axes (2 for one
+    body, 6 for a pair, n + 3 for a chain of n bodies) in that order, or a Figure (see
+    ``plot``).
     """
     names = [str(v) for v in ds["variable"].values]
     T = float(ds.attrs["forcing_period"])
@@ -24,21 +35,27 @@ def draw_trajectory(ds, last_periods: int | None = None, ax=None):
     y = ds["state"].values
     st = ds["section_time"].values / T
     sy = ds["section_state"].values
-    pair = len(names) == 4
-    bodies = [(0, 1, "x_1", "\\dot x_1"), (2, 3, "x_2", "\\dot x_2")] if pair else [
-        (0, 1, "x", "\\dot x")]
+    chain = "stop_max_penetration" in ds
+    pair = len(names) == 4 and not chain
+    n_bodies = len(names) // 2
+    if n_bodies == 1 and not chain:
+        bodies = [(0, 1, "x", "\\dot x")]
+    else:
+        bodies = [(2 * k, 2 * k + 1, f"x_{k + 1}", f"\\dot x_{k + 1}") for k in range(n_bodies)]
     n_sections = np.isfinite(st).sum()
     keep = last_periods if last_periods else max(1, min(20, n_sections // 4))
     t_cut = st[np.isfinite(st)][-1] - keep if n_sections else t[-1]
     steady = t >= t_cut
 
-    ncols = 3 if pair else 2
-    shape = (2 if pair else 1, ncols)
-    fig, axes = place_panels(ax, shape, [divmod(k, ncols) for k in range(shape[0] * ncols)],
-                             figsize=(4.2 * ncols, 7.2 if pair else 3.8))
+    n_panels = trajectory_panels(ds)
+    ncols = 3 if pair or chain else 2
+    shape = (-(-n_panels // ncols), ncols)
+    fig, axes = place_panels(ax, shape, [divmod(k, ncols) for k in range(n_panels)],
+                             figsize=(4.2 * ncols, 3.6 * shape[0] if shape[0] > 1 else 3.8))
     ax = axes[0]
     for k, (ix, _, xl, _) in enumerate(bodies):
-        ax.plot(t, y[:, ix], lw=0.7, color=BODY_COLOURS[k], label=f"${xl}$")
+        ax.plot(t, y[:, ix], lw=0.7, color=BODY_COLOURS[k % len(BODY_COLOURS)],
+                label=f"${xl}$")
         ax.plot(st, sy[:, ix], ".", ms=3, color="k")
     ax.set_xlabel("$t/T$")
     ax.set_ylabel("displacement")
@@ -47,7 +64,7 @@ def draw_trajectory(ds, last_periods: int | None = None, ax=None):
     for k, (ix, iv, xl, vl) in enumerate(bodies):
         ax = axes[1 + k]
         ax.plot(y[~steady, ix], y[~steady, iv], lw=0.4, color="0.75")
-        ax.plot(y[steady, ix], y[steady, iv], lw=1.0, color=BODY_COLOURS[k])
+        ax.plot(y[steady, ix], y[steady, iv], lw=1.0, color=BODY_COLOURS[k % len(BODY_COLOURS)])
         tail = st >= t_cut
         ax.plot(sy[tail, ix], sy[tail, iv], "o", ms=5, mfc="k", mec="w", zorder=3,
                 label="Poincaré points")
@@ -57,7 +74,8 @@ def draw_trajectory(ds, last_periods: int | None = None, ax=None):
                     label=f"{ds.attrs.get('label', 'attractor')} (section)")
         ax.set_xlabel(f"${xl}$")
         ax.set_ylabel(f"${vl}$")
-        ax.set_title(f"phase portrait, body {k + 1}" if pair else "phase portrait", fontsize=9)
+        ax.set_title(f"phase portrait, body {k + 1}" if len(bodies) > 1 else "phase portrait",
+                     fontsize=9)
         ax.legend(loc="upper right", fontsize=7)
     if pair:
         d = _parameter(ds, "d")
@@ -80,10 +98,31 @@ def draw_trajectory(ds, last_periods: int | None = None, ax=None):
         axes[ncols + 2].axis("off")
         axes[ncols + 2].text(0.0, 1.0, _summary(ds), va="top", family="monospace",
                              fontsize=8, transform=axes[ncols + 2].transAxes)
+    if chain:
+        _draw_stops(axes[1 + n_bodies], ds, t, y)
+        axes[2 + n_bodies].axis("off")
+        axes[2 + n_bodies].text(0.0, 1.0, _summary(ds), va="top", family="monospace",
+                                fontsize=8, transform=axes[2 + n_bodies].transAxes)
     for k, ax in enumerate(a for a in axes if a.axison):
         panel_letter(ax, k)
     fig.suptitle(_title(ds), fontsize=10)
     return root_figure(fig)
+
+
+def _draw_stops(ax, ds, t, y) -> None:
+    """Every stop's compression against t/T (> 0: in contact), from the stops' table of a
+    chain's result (``stop_body``, ``stop_other``, ``stop_sign``, ``stop_offset``)."""
+    for k, s in enumerate(ds["stop"].values):
+        i, j = int(ds["stop_body"].values[k]), int(ds["stop_other"].values[k])
+        other = y[:, 2 * (j - 1)] if j > 0 else 0.0
+        delta = ds["stop_sign"].values[k] * (y[:, 2 * (i - 1)] - other) \
+            - ds["stop_offset"].values[k]
+        ax.plot(t, delta, lw=0.7, label=f"stop {int(s)} ({ds['stop_between'].values[k]})")
+    ax.axhline(0.0, color="tab:orange", lw=1, ls="--")
+    ax.set_xlabel("$t/T$")
+    ax.set_ylabel("compression (> 0: contact)")
+    ax.set_title("stops", fontsize=9)
+    ax.legend(loc="lower right", fontsize=7)
 
 
 def _parameter(ds, name: str) -> float | None:
@@ -100,7 +139,9 @@ def _parameter(ds, name: str) -> float | None:
 def _title(ds) -> str:
     model = ds.attrs.get("model", "")
     bodies = int(ds.attrs.get("bodies", 1))
-    return (f"{model} {'pair' if bodies == 2 else 'body'}: {parameter_text(ds)}; start at "
+    what = f"{bodies} bodies" if "stop_max_penetration" in ds else (
+        "pair" if bodies == 2 else "body")
+    return (f"{model} {what}: {parameter_text(ds)}; start at "
             f"{start_text(ds)}\n{outcome_text(ds)}")
 
 
@@ -132,6 +173,15 @@ def _summary(ds) -> str:
 
 
 def _contact_line(ds) -> str:
+    if "stop_max_penetration" in ds:  # a chain: each stop's max compression
+        return "max compression per stop\n" + "\n".join(
+            f"  stop {int(s)}: {v:.4g}" for s, v in zip(ds["stop"].values,
+                                                     ds["stop_max_penetration"].values,
+                                                     strict=True))
+    return _pair_contact_line(ds)
+
+
+def _pair_contact_line(ds) -> str:
     """How close the bodies come on the final orbit: the penetration x1 - x2 - d of an
     impacting orbit, the clearance d - max(x1 - x2) (> 0: never met) of another."""
     g = float(ds.attrs.get("max_penetration", np.nan))

@@ -106,6 +106,8 @@ def test_a_chain_bifurcation_runs_and_is_described_and_drawn(tmp_path):
     assert list(ds["step"].values) == [12.0, 11.0, 10.0, 9.0, 8.0]
     text = format_summary(describe(ds), ds)
     assert "stop.1.d" in text and "1:P1^1" in text
+    assert "destroyed at stop.1.d" in text and "impacting for stop.1.d in" in text
+    assert "destroyed at d" not in text  # the followed parameter is named, not a gap d
     assert len(plot.bifurcation(ds).axes) == 3
     with pytest.raises(ConfigError, match="branches: 'L1\\^1' is not a non-impacting product"):
         run_scene(parse_scene(BIFURCATION.replace('step = 1.0', 'step = 1.0\nbranches = ["L1^1"]')
