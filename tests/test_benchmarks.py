@@ -133,3 +133,23 @@ def test_plane_scenes_are_the_figures_panels():
     scene = common.plane_scene("9", 5, {"rtol": 1e-6})
     assert scene.initial_conditions.count == 25 and scene.integrator.rtol == 1e-6
     assert scene.initial_conditions.t0 == 0.0
+
+
+def test_the_never_seen_chains_are_valid_scenes():
+    """bench_chain_targets' never-seen models (body count, kinks, stops and laws drawn):
+    each a scene the reader takes, with the structure its summary states."""
+    import numpy as np
+
+    from softimpact_cli.kinds.scene import parse_scene
+
+    sys.path.insert(0, str(BENCHMARKS))
+    try:
+        targets = importlib.import_module("bench_chain_targets")
+    finally:
+        sys.path.remove(str(BENCHMARKS))
+    for seed in range(12):
+        text, summary = targets.fresh_scene(np.random.default_rng(seed))
+        model = parse_scene(text, f"<fresh {seed}>").system.extra["chain"]
+        assert summary.startswith(f"{model.bodies} bodies, {len(model.kinks)} kink(s), "
+                                  f"{len(model.stops)} stops")
+        assert model.stops[-1].wall and 2 <= model.bodies <= 7
