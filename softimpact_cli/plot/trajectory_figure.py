@@ -139,7 +139,7 @@ def _parameter(ds, name: str) -> float | None:
 def _title(ds) -> str:
     model = ds.attrs.get("model", "")
     bodies = int(ds.attrs.get("bodies", 1))
-    what = f"{bodies} bodies" if "stop_max_penetration" in ds else (
+    what = f"{bodies} bod{'y' if bodies == 1 else 'ies'}" if "stop_max_penetration" in ds else (
         "pair" if bodies == 2 else "body")
     return (f"{model} {what}: {parameter_text(ds)}; start at "
             f"{start_text(ds)}\n{outcome_text(ds)}")
