@@ -178,17 +178,22 @@ def fresh_row(tmp: Path) -> tuple[str, str, str]:
                     "-o", str(tmp / "warm.h5")], check=True, capture_output=True)
     text, summary = fresh_scene(np.random.default_rng(time.time_ns()))
     (tmp / "fresh.toml").write_text(text)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     run = subprocess.run([str(SOFTIMPACT), "sweep", str(tmp / "fresh.toml"), "--overwrite",
                           "-o", str(tmp / "fresh.h5")], capture_output=True, text=True)
     wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    seconds = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
     compiled = "compiling" in (run.stdout + run.stderr)
-    ok = run.returncode == 0 and not compiled and wall <= FRESH_SECONDS
+    ok = run.returncode == 0 and not compiled
     return (f"never-seen chain ({summary}): first trajectory of 200 periods, "
             "`softimpact sweep` subprocess",
-            f"{wall:.2f} s wall (exit {run.returncode}), "
+            f"{wall:.2f} s wall, {seconds:.2f} s CPU (exit {run.returncode}), "
             f"{'a compiling line' if compiled else 'no compiling line'}",
-            f"<= {FRESH_SECONDS:g} s, no compiling: {'met' if ok else 'NOT met'}")
+            f"<= {FRESH_SECONDS:g} s: wall {'met' if ok and wall <= FRESH_SECONDS else 'NOT met'}"
+            f", CPU {'met' if ok and seconds <= FRESH_SECONDS else 'NOT met'} (a loaded "
+            "machine stretches the wall)")
 
 
 def three_rows(tmp: Path, n_stability: int, side: int) -> list[tuple[str, str, str]]:
