@@ -21,7 +21,7 @@ k = 29.0
 [[stop]]
 between = [1, 2]            # in contact while x_1 - x_2 >= d
 d = 2.0
-law = "paper"               # paper | no-tension | hunt-crossley (its exponent)
+law = "paper"               # paper | no-tension | hunt-crossley (its exponent) | rigid (r)
 k_c = 8.0
 c_c = 10.0
 
@@ -203,8 +203,14 @@ def _read_stops(source: str, doc: Mapping[str, Any], n: int):
         else:
             raise sec.fail(None, "needs between = [i, j] (two bodies) or body, wall, side "
                                  "(a wall)")
-        value["k_c"] = sec.number("k_c", 8.0, non_negative)
-        value["c_c"] = sec.number("c_c", 10.0, non_negative)
+        if law.soft:
+            value["k_c"] = sec.number("k_c", 8.0, non_negative)
+            value["c_c"] = sec.number("c_c", 10.0, non_negative)
+        else:
+            for key in ("k_c", "c_c"):
+                if sec.has(key):
+                    raise sec.fail(key, f"not a key of law {law.name!r} (a rigid stop has no "
+                                        "stiffness or damping: its restitution is r)")
         for key in LAW_KEYS.values():  # a law's own keys (the Hunt-Crossley exponent)
             if key in law.keys:
                 value[key.name] = sec.number(key.name, key.default, key.check)

@@ -35,7 +35,9 @@ for (_model, _bodies), _system in REGISTRY.items():  # a third body fails here, 
                          f"{_system.bodies} bodies")
 
 MODELS = tuple(sorted({model for model, _ in REGISTRY}))
-LAWS = tuple(_stops.LAWS)  # names of the stop laws (systems/stops.py)
+# names of the stop laws a preset's [coupling] takes (systems/stops.py); the rigid law is a
+# chain's [[stop]] only
+LAWS = tuple(name for name, law in _stops.LAWS.items() if law.soft)
 STOP_LAWS = _stops.LAWS  # {name: StopLaw}
 LAW_KEYS = _stops.LAW_KEYS  # {[coupling] key: LawKey} of the keys only some laws use
 
