@@ -21,9 +21,9 @@ the stop *sticks* (its contact bit set: ``chain.py``'s right-hand side holds the
 together, the surface is not watched). The remaining ``2 u / ((1 - r) g'')`` of chatter is
 spent stuck, the constrained motion it approximates to O(u). ``r = 0`` sticks at once.
 A stuck stop is released when the contact force would pull: when the free ``g''`` turns
-negative, located by Illinois on time (re-integrating from the phase's chunk start) to
-rounding. The stuck phase advances in chunks of ``opts[H_MAX] / STUCK_CHUNKS``, the
-release tested at each chunk's end.
+negative (below ``-PULL``, see there), located by Illinois on time (re-integrating from
+the chunk's start) to rounding. The stuck phase advances in chunks of
+``opts[H_MAX] / STUCK_CHUNKS``, the release tested at each chunk's end.
 
 The system packs its **impact table** behind its parameters (``chain.py``), its start as
 ``p``'s last entry: ``p[at]`` the number of rigid stops, then per stop a block of
@@ -55,6 +55,15 @@ from .layout import (
 
 SURFACE, RESTITUTION, DIRECTION = 0, 1, 2  # a rigid stop's block in the impact table
 RESOLUTION = 1e-12  # a chatter flight rising less than this (x max(1, |y|)): accumulated
+# A stuck stop is released once its free g'' is below -PULL * max(1, |y|), not at 0: there the
+# body would leave with g = g' = 0 and g'' of rounding size, and the step's dense output,
+# its own rounding larger, would cross the surface again and again (seen: 10^4 switches in
+# one period of the chattering case). The release comes later by PULL / |d g''/dt|.
+PULL = 1e-12
+# ... and, leaving the surface tangentially (g = g' = 0), the bodies are moved apart by
+# NUDGE * max(1, |y|) (rounding size): the step's dense output, whose rounding is as large
+# as its g there, would otherwise see the surface crossed again at every restart.
+NUDGE = 1e-15
 STUCK_CHUNKS = 8.0  # a stuck phase advances opts[H_MAX] / STUCK_CHUNKS at a time
 RELEASE_ITERATIONS = 100
 
@@ -63,6 +72,15 @@ RELEASE_ITERATIONS = 100
 def table_start(p):
     """Where the impact table begins in ``p`` (its last entry says)."""
     return int(p[p.shape[0] - 1])
+
+
+@njit(cache=True)
+def pull(y):
+    """The free g'' below which a stuck stop is released (see PULL)."""
+    scale = 1.0
+    for k in range(y.shape[0]):
+        scale = max(scale, abs(y[k]))
+    return PULL * scale
 
 
 @njit(cache=True)
@@ -109,6 +127,25 @@ def plastic(p, block, y):
 
 
 @njit(cache=True)
+def leave(p, block, y):
+    """Move the bodies of a stop apart by ``NUDGE * max(1, |y|)`` along the surface's
+    normal (momentum-weighted, ``DIRECTION``): ``g`` drops by that much (``a . w = 1``)."""
+    step = NUDGE * pull(y) / PULL
+    for k in range(y.shape[0] // 2):
+        y[2 * k] -= step * p[block + DIRECTION + k]
+
+
+@njit(cache=True)
+def leave_released(p, table, released, y):
+    """``leave`` for every stop in the mask ``released``."""
+    at, size, _ = table
+    for k in range(int(p[at])):
+        block = at + 1 + k * size
+        if (released >> int(p[block + SURFACE])) & 1:
+            leave(p, block, y)
+
+
+@njit(cache=True)
 def impact(rhs, p, t, y, block, A, s, mode, istate, f):
     """The reset at a crossing into rigid stop surface ``s`` (``block`` its table entry);
     returns whether the stop sticks (the chatter accumulated, or ``r = 0`` with the bodies
@@ -123,7 +160,9 @@ def impact(rhs, p, t, y, block, A, s, mode, istate, f):
     else:
         rate = 0.0
     acc = free_acceleration(rhs, p, t, y, mode, A, s, f)
-    if acc <= 0.0:
+    if acc <= -pull(y):  # it leaves (between -PULL and 0 it sticks: see PULL)
+        if rate == 0.0:  # tangentially: see NUDGE
+            leave(p, block, y)
         return False
     speed = r * rate
     scale = 1.0
@@ -140,17 +179,18 @@ def impact(rhs, p, t, y, block, A, s, mode, istate, f):
 
 @njit(cache=True)
 def releasing(rhs, p, t, y, mode, stuck, A, table, f):
-    """The mask of the stuck stops (bits of ``stuck``) whose free ``g''`` is negative at
-    ``(t, y)`` in ``mode``, and the smallest free ``g''`` over them."""
+    """The mask of the stuck stops (bits of ``stuck``) whose free ``g''`` is below
+    ``-pull(y)`` at ``(t, y)`` in ``mode``, and the smallest free ``g'' + pull(y)`` over
+    them (< 0: released)."""
     at, size, _ = table
-    released, lowest = 0, np.inf
+    released, lowest, margin = 0, np.inf, pull(y)
     for k in range(int(p[at])):
         s = int(p[at + 1 + k * size + SURFACE])
         if not (stuck >> s) & 1:
             continue
         acc = free_acceleration(rhs, p, t, y, mode, A, s, f)
-        lowest = min(lowest, acc)
-        if acc < 0.0:
+        lowest = min(lowest, acc + margin)
+        if acc + margin < 0.0:
             released |= 1 << s
     return released, lowest
 
@@ -178,6 +218,7 @@ def impact_loop(name, advance):
         released, _ = releasing(rhs, p, t, y, istate[MODE], stuck, A_s, table, f)
         if released != 0:  # the force pulls already (a switch elsewhere changed it)
             istate[MODE] &= ~released
+            leave_released(p, table, released, y)
             return OK, t
         t_b = min(t + opts[H_MAX] / STUCK_CHUNKS, t_end)
         saved = (y.copy(), istate.copy(), fstate.copy())
@@ -194,7 +235,7 @@ def impact_loop(name, advance):
         if released == 0:
             fstate[T_STUCK] += t_b - t
             return status, t_b
-        # Illinois on the smallest free g'' over [t, t_b]: >= 0 at t, < 0 at t_b
+        # Illinois on the smallest free g'' + pull over [t, t_b]: >= 0 at t, < 0 at t_b
         lo, hi = t, t_b
         _, g_lo = releasing(rhs, p, t, saved[0], saved[1][MODE], stuck, A_s, table, f)
         _, g_hi = releasing(rhs, p, t_b, y, mode, stuck, A_s, table, f)
@@ -224,6 +265,7 @@ def impact_loop(name, advance):
         released, _ = releasing(rhs, p, hi, y, (istate[MODE] & ~rigid) | stuck, stuck, A_s,
                                 table, f)
         istate[MODE] &= ~released
+        leave_released(p, table, released, y)
         fstate[T_STUCK] += hi - t
         return status, hi
 
