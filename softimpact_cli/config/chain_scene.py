@@ -40,7 +40,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from ..systems import LAW_KEYS, STOP_LAWS, System
+from ..systems import STOP_KEYS, STOP_LAWS, System
 from ..systems.chain import (
     BODY_KEYS,
     EXTRA_POWERS,
@@ -211,13 +211,13 @@ def _read_stops(source: str, doc: Mapping[str, Any], n: int):
                 if sec.has(key):
                     raise sec.fail(key, f"not a key of law {law.name!r} (a rigid stop has no "
                                         "stiffness or damping: its restitution is r)")
-        for key in LAW_KEYS.values():  # a law's own keys (the Hunt-Crossley exponent)
+        for key in STOP_KEYS.values():  # a law's own keys (exponent, r)
             if key in law.keys:
                 value[key.name] = sec.number(key.name, key.default, key.check)
             elif sec.has(key.name):
                 raise sec.fail(key.name, f"not a key of law {law.name!r}")
         sec.finish(("between", "body", "wall", "side", "d", "law", "k_c", "c_c")
-                   + tuple(LAW_KEYS))
+                   + tuple(STOP_KEYS))
         stops.append(stop)
         values.append(value)
     return stops, values

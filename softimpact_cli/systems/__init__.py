@@ -39,7 +39,10 @@ MODELS = tuple(sorted({model for model, _ in REGISTRY}))
 # chain's [[stop]] only
 LAWS = tuple(name for name, law in _stops.LAWS.items() if law.soft)
 STOP_LAWS = _stops.LAWS  # {name: StopLaw}
-LAW_KEYS = _stops.LAW_KEYS  # {[coupling] key: LawKey} of the keys only some laws use
+# {[coupling] key: LawKey} of the keys only some of a preset's laws use
+LAW_KEYS = {name: key for name, key in _stops.LAW_KEYS.items()
+            if any(key in _stops.LAWS[law].keys for law in LAWS)}
+STOP_KEYS = _stops.LAW_KEYS  # {[[stop]] key: LawKey}: a chain's, the rigid law's r too
 
 
 def get_system(model: str, bodies: int) -> System:
@@ -53,5 +56,6 @@ def get_system(model: str, bodies: int) -> System:
         ) from None
 
 
-__all__ = ["COUPLING_PARAMETERS", "LAWS", "LAW_KEYS", "MODELS", "REGISTRY", "STOP_LAWS",
+__all__ = ["COUPLING_PARAMETERS", "LAWS", "LAW_KEYS", "MODELS", "REGISTRY", "STOP_KEYS",
+           "STOP_LAWS",
            "Parameter", "Surfaces", "System", "get_system"]

@@ -168,3 +168,30 @@ def test_an_impact_between_two_bodies_keeps_momentum():
     assert v1 + 3.0 * v2 == pytest.approx(-2.0, abs=1e-13)
     T = 2.0 * np.pi
     assert x1 - x2 == pytest.approx(0.5 - r * 2.0 * (T - 0.25), abs=1e-10)
+
+
+def test_the_stiff_soft_stop_converges_to_the_rigid_law_at_rate_one_half():
+    """A soft wall (law "paper", k_c, c_c = 2 zeta_c sqrt(k_c)) with the restitution of a
+    linear spring-dashpot released at delta = 0, r = exp(-zeta_c pi / sqrt(1 - zeta_c^2)),
+    tends to the rigid wall: the stroboscopic period-1 point moves as the contact's
+    duration pi / sqrt(k_c), distance ~ k_c^(-1/2) (measured: 8.4e-2, 2.8e-2, 8.9e-3,
+    2.8e-3 for k_c = 1e3 .. 1e6)."""
+    w, r = 0.8, 0.8
+    sigma = 0.5 * amplitude(ZETA, w)
+    rigid = [o for o in period_one(ZETA, w, sigma, r) if o[1] > 0.0][0][2]
+    soft = ChainModel(1, (), (), (Stop(1, 0, "right", "paper"),))
+    zeta_c = -np.log(r) / np.sqrt(np.pi ** 2 + np.log(r) ** 2)
+    stiffness = np.array([1e3, 1e4, 1e5, 1e6])
+    distances = []
+    for k_c in stiffness:
+        values = chain_values(soft, w, {"m": 1.0, "c": 2.0 * ZETA, "k1": 1.0, "k2": 0.0,
+                                        "F": 1.0, "phi": np.pi / 2}, (),
+                              ({"wall": sigma, "k_c": k_c, "c_c": 2 * zeta_c * np.sqrt(k_c)},))
+        problem = Problem(chain_system(soft), values,
+                          IntegratorSettings(method="auto", rtol=1e-11, atol=1e-12))
+        traj = record_trajectory(problem, rigid, 0.0, 60, 1)
+        assert np.max(np.abs(traj.section_y[-1] - traj.section_y[-2])) < 1e-10  # converged
+        distances.append(np.max(np.abs(traj.section_y[-1] - rigid)))
+    slope = np.polyfit(np.log(stiffness), np.log(distances), 1)[0]
+    assert np.all(np.diff(distances) < 0.0) and distances[-1] < 5e-3
+    assert -0.55 < slope < -0.45

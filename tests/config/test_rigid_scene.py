@@ -11,6 +11,7 @@ import pytest
 from softimpact_cli.config import ConfigError
 from softimpact_cli.kinds.run import run_scene
 from softimpact_cli.kinds.scene import parse_scene
+from softimpact_cli.report.info import describe
 
 HEAD = """\
 [system]
@@ -97,3 +98,7 @@ def test_a_rigid_trajectory_scene_counts_its_impacts(tmp_path):
     assert ds.attrs["rigid_impacts"] == int(ds["section_contacts"].sum())
     assert np.isfinite(ds.attrs["rigid_sticking_time"])
     assert float(ds["state"].sel(variable="x1").max()) <= 1.2 + 1e-12  # never past it
+    summary = describe(ds)  # what info shows
+    assert summary["rigid_impacts"] == ds.attrs["rigid_impacts"]
+    assert {"rigid_chatter_sequences", "rigid_sticking_phases",
+            "rigid_sticking_time"} <= set(summary)
