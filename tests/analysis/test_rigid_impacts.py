@@ -195,3 +195,22 @@ def test_the_stiff_soft_stop_converges_to_the_rigid_law_at_rate_one_half():
     slope = np.polyfit(np.log(stiffness), np.log(distances), 1)[0]
     assert np.all(np.diff(distances) < 0.0) and distances[-1] < 5e-3
     assert -0.55 < slope < -0.45
+
+
+def test_two_bodies_stuck_move_together_until_the_force_would_pull():
+    """Two bodies (m = 1, no springs, no damping) start touching at rest across a rigid
+    stop (x1 - x2 = d: stuck from the start), body 1 forced by sin t: they move as one,
+    v = (1 - cos t) / 2, until t = pi where the force on body 1 turns to pull it back;
+    then body 2 flies on at v = 1 and body 1 at v = -cos t. At t = 2 pi:
+    (x1, v1, x2, v2) = (d + pi/2, -1, 3 pi/2, 1), stuck for pi."""
+    model = ChainModel(2, (), (), (Stop(1, 2, law="rigid"),))
+    values = chain_values(model, 1.0, {"m": 1.0, "c": 0.0, "k1": 0.0, "F": [1.0, 0.0],
+                                       "phi": 0.0}, (), ({"d": 0.5, "r": 0.5},))
+    problem = Problem(chain_system(model), values, TIGHT)
+    traj = record_trajectory(problem, [0.5, 0.0, 0.0, 0.0], 0.0, 1, 64)
+    assert traj.status == 0 and traj.impacts["impacts"] == 0
+    expected = [0.5 + np.pi / 2, -1.0, 1.5 * np.pi, 1.0]
+    assert np.max(np.abs(traj.section_y[-1] - expected)) < 1e-9
+    assert traj.sticking_time == pytest.approx(np.pi, abs=1e-9)
+    stuck = traj.t < np.pi - 1e-6
+    assert np.all(traj.y[stuck, 1] == traj.y[stuck, 3])  # one velocity, bit for bit
