@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..config import IntegratorSettings
-from ..kernels import METHODS, cells, layout, orbit
+from ..kernels import IMPACT_ADVANCE, METHODS, cells, layout, orbit
 from ..kernels.codes import CONVERGED, MIXED_CELL, NO_ORBIT, outcome
 from ..systems import Surfaces, System
 from ..systems.piecewise_linear import with_exact_block
@@ -23,6 +23,16 @@ from ..systems.piecewise_linear import with_exact_block
 # "method_switches" the changes of method within `auto`
 COUNTER_NAMES = ("mode", "steps", "rejected_steps", "rhs_evaluations", "switches", "contacts",
                  "samples", "stiff_steps", "method_switches")
+
+
+# the impact loop's counters (kernels/impacts.py), in results of systems with rigid stops
+IMPACT_COUNTERS = {"impacts": layout.N_IMPACTS, "chatter_sequences": layout.N_CHATTERS,
+                   "sticking_phases": layout.N_STICKS}
+
+
+def impact_counters(counters: np.ndarray) -> dict[str, int]:
+    """The impact loop's counters of the kernels' istate as {name: value}."""
+    return {name: int(counters[i]) for name, i in IMPACT_COUNTERS.items()}
 
 
 def counter_dict(counters: np.ndarray) -> dict[str, int]:
@@ -80,7 +90,10 @@ class Problem:
 
     @property
     def advance(self):
-        """The integration method's kernel (see ``kernels.driver``)."""
+        """The integration method's kernel (see ``kernels.driver``); with rigid stops, its
+        impact loop (``kernels.impacts``)."""
+        if self.system.extra.get("rigid"):
+            return IMPACT_ADVANCE[self.integrator.resolved_method]
         return METHODS[self.integrator.resolved_method].advance
 
     def kernel_args(self):
@@ -237,7 +250,8 @@ class Trajectory:
     t : (n_samples,) sample times; y : (n_samples, dim) dense samples;
     section_t : (periods + 1,) stroboscopic times; section_y : (periods + 1, dim);
     contacts : (periods + 1,) contact onsets per period (entry 0: before the first section);
-    max_g : (periods + 1,) max of x1 - x2 - d per period.
+    max_g : (periods + 1,) max of x1 - x2 - d per period; impacts : the impact loop's
+    counters (``impact_counters``) and sticking_time, the time spent stuck on rigid stops.
     """
 
     status: int
@@ -248,6 +262,8 @@ class Trajectory:
     contacts: np.ndarray
     max_g: np.ndarray
     counters: dict[str, int]
+    impacts: dict[str, int] = field(default_factory=dict)
+    sticking_time: float = 0.0
 
 
 def record_trajectory(problem: Problem, state, t0: float, periods: int,
@@ -265,4 +281,5 @@ def record_trajectory(problem: Problem, state, t0: float, periods: int,
         problem.kernel_args(), problem.options(dt, float(t0)), capacity))
     n = out.n_samples
     return Trajectory(int(out.status), out.sample_t[:n], out.sample_y[:n], out.section_t,
-                      out.section_y, out.contacts, out.max_g, counter_dict(out.counters))
+                      out.section_y, out.contacts, out.max_g, counter_dict(out.counters),
+                      impact_counters(out.counters), float(out.sticking_time))

@@ -250,6 +250,7 @@ def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
             "classify_wall_s": done - recorded,
             **{f"record_{k}": v for k, v in traj.counters.items() if k != "mode"},
             **{f"classify_{k}": v for k, v in cls.first.counters.items() if k != "mode"},
+            **(_rigid_attrs(traj) if problem.system.extra.get("rigid") else {}),
         },
     )
     if cls.table.data_vars:  # the attractor with its exponents, as sweeps store it
@@ -261,3 +262,10 @@ def trajectory_dataset(problem: Problem, state, t0: float, periods: int,
             "max over the stops' compressions during the period ending here (> 0: a stop "
             "compressed)")
     return ds
+
+
+def _rigid_attrs(traj) -> dict:
+    """The recorded trajectory's rigid impacts (``kernels.impacts``): impacts, chatter
+    sequences ended by their accumulation, sticking phases and the time stuck."""
+    return {**{f"rigid_{k}": v for k, v in traj.impacts.items()},
+            "rigid_sticking_time": float(traj.sticking_time)}

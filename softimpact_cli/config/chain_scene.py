@@ -21,7 +21,7 @@ k = 29.0
 [[stop]]
 between = [1, 2]            # in contact while x_1 - x_2 >= d
 d = 2.0
-law = "paper"               # paper | no-tension | hunt-crossley (its exponent)
+law = "paper"               # paper | no-tension | hunt-crossley (its exponent) | rigid (r)
 k_c = 8.0
 c_c = 10.0
 
@@ -40,7 +40,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from ..systems import LAW_KEYS, STOP_LAWS, System
+from ..systems import STOP_KEYS, STOP_LAWS, System
 from ..systems.chain import (
     BODY_KEYS,
     EXTRA_POWERS,
@@ -203,15 +203,21 @@ def _read_stops(source: str, doc: Mapping[str, Any], n: int):
         else:
             raise sec.fail(None, "needs between = [i, j] (two bodies) or body, wall, side "
                                  "(a wall)")
-        value["k_c"] = sec.number("k_c", 8.0, non_negative)
-        value["c_c"] = sec.number("c_c", 10.0, non_negative)
-        for key in LAW_KEYS.values():  # a law's own keys (the Hunt-Crossley exponent)
+        if law.soft:
+            value["k_c"] = sec.number("k_c", 8.0, non_negative)
+            value["c_c"] = sec.number("c_c", 10.0, non_negative)
+        else:
+            for key in ("k_c", "c_c"):
+                if sec.has(key):
+                    raise sec.fail(key, f"not a key of law {law.name!r} (a rigid stop has no "
+                                        "stiffness or damping: its restitution is r)")
+        for key in STOP_KEYS.values():  # a law's own keys (exponent, r)
             if key in law.keys:
                 value[key.name] = sec.number(key.name, key.default, key.check)
             elif sec.has(key.name):
                 raise sec.fail(key.name, f"not a key of law {law.name!r}")
         sec.finish(("between", "body", "wall", "side", "d", "law", "k_c", "c_c")
-                   + tuple(LAW_KEYS))
+                   + tuple(STOP_KEYS))
         stops.append(stop)
         values.append(value)
     return stops, values

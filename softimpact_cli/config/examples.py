@@ -23,8 +23,8 @@ phi = "5*pi/8"             # phase of the right body's forcing: a number or "a*p
 k_c = 8.0                  # stop stiffness
 c_c = 10.0                 # stop damping
 law = "paper"              # {laws}
-""".format(laws=" | ".join(f'"{law.name}"' for law in STOP_LAWS.values()) + "".join(
-    f" ({law.name}: {key.name} = {key.default:g})" for law in STOP_LAWS.values()
+""".format(laws=" | ".join(f'"{law.name}"' for law in STOP_LAWS.values() if law.soft) + "".join(
+    f" ({law.name}: {key.name} = {key.default:g})" for law in STOP_LAWS.values() if law.soft
     for key in law.keys))
 
 EXAMPLES: dict[str, str] = {

@@ -50,10 +50,11 @@ KEYS: dict[str, dict[str, str]] = {
         "wall": "a wall stop's position",
         "side": '"right": contact while x_body >= wall; "left": while x_body <= wall',
         "law": 'the stop force law: "paper", "no-tension" or "hunt-crossley" (as [coupling] '
-               "law)",
-        "k_c": "the stop's stiffness",
-        "c_c": "the stop's damping",
+               'law), or "rigid" (impacts with restitution r, chattering and sticking)',
+        "k_c": "the stop's stiffness (soft laws)",
+        "c_c": "the stop's damping (soft laws)",
         "exponent": "hunt-crossley: the exponent n",
+        "r": "rigid: the coefficient of restitution in [0, 1], v_rel+ = -r v_rel-",
     },
     "kink": {
         "body": "the body the spring acts on",

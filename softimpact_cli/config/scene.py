@@ -316,6 +316,9 @@ def settle_method(source: str, doc: dict, text: str, system: System, values: dic
                  "system (no method, rtol or atol set)\n")
     if integrator.traits.closed_form:
         _check_exact(source, system, points, integrator)
+    if system.extra.get("rigid") and not integrator.locate_switches:
+        raise ConfigError(f"{source}: [integrator] locate_switches: a rigid stop's impacts "
+                          "are located events; locate_switches = false is for soft stops")
     return integrator, text
 
 

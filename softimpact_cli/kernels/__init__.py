@@ -27,10 +27,13 @@ METHOD_MODULES = {"auto": "auto", "rk4": "rk4", "dopri5": "dopri5", "rodas4": "r
 ALIASES = {"stiff": "rodas4"}  # other names a scene may use
 
 _SHARED = ("cells", "codes", "common", "control", "dense", "driver", "layout", "linalg",
-           "orbit", "switching", "saltation", "lyapunov")
+           "orbit", "switching", "saltation", "lyapunov", "impacts")
 with source_keyed_cache():  # every jitted module of the package, imported here
     _modules = {name: import_module(f".{name}", __name__)
                 for name in (*_SHARED, *METHOD_MODULES.values())}
+    # each method's advance with rigid impacts (kernels/impacts.py); compiled when used
+    IMPACT_ADVANCE = {name: _modules["impacts"].impact_loop(name, _modules[module].advance)
+                      for name, module in METHOD_MODULES.items()}
 for _module in _modules.values():
     stabilise(_module)
 METHODS = {name: _modules[module] for name, module in METHOD_MODULES.items()}

@@ -36,14 +36,19 @@ AUTO_STIFF_MODES = 10  # bit m set: a phase in mode m starts with the stiff meth
 AUTO_HITS = 11  # Hairer's stiffness test: recent steps that looked stability bound
 AUTO_CALM = 12  # ... and steps in a row that did not
 AUTO_COOLDOWN = 13  # stiffness tests still to skip after a return to the explicit method
-N_ISTATE = 14
+# rigid impacts (kernels/impacts.py; 0 without rigid stops)
+N_IMPACTS = 14  # impacts (velocity resets)
+N_CHATTERS = 15  # chatter sequences ended by their accumulation point
+N_STICKS = 16  # sticking phases begun
+N_ISTATE = 17
 
 # fstate
 H = 0  # the step the adaptive controller proposes next
 MAX_G = 1  # running max of the contact function x1 - x2 - d (reset per period by callers)
 T_SWITCH = 2  # the time of the switch after which an advance call stopped on its switch
 #               budget (TOO_MANY_SWITCHES); ``opts[MAX_SWITCHES] = 0`` stops at every switch
-N_FSTATE = 3
+T_STUCK = 3  # time spent stuck on rigid stops (kernels/impacts.py)
+N_FSTATE = 4
 
 # rows of the work array (shape (work_rows(dim), dim)); one array holds every method's
 # scratch, so the driver passes it alone

@@ -24,7 +24,17 @@ from numba import njit
 
 from .cells import NO_CELL, cell_key, new_cells
 from .codes import CONVERGED, MIXED_CELL, NO_ORBIT, OK, UNRESOLVED
-from .layout import MATRICES, MAX_G, MODE, N_CONTACTS, N_FSTATE, N_ISTATE, N_SAMPLES, WORK_ROWS
+from .layout import (
+    MATRICES,
+    MAX_G,
+    MODE,
+    N_CONTACTS,
+    N_FSTATE,
+    N_ISTATE,
+    N_SAMPLES,
+    T_STUCK,
+    WORK_ROWS,
+)
 from .switching import mode_of
 
 # What ``classify_near`` returns, as ``classified`` names it. The kernel returns plain
@@ -47,12 +57,15 @@ Classified = namedtuple("Classified", ["status", "period", "periods_used", "orbi
 Known = namedtuple("Known", ["points", "periods", "max_g", "capture_tol", "capture_hits"])
 Cells = namedtuple("Cells", ["size", "hits", "visited"])
 # What ``record`` returns, as ``recorded`` names it (the kernel: ((status, samples
-# written), (sample_t, sample_y), (section_t, section_y, contacts, max_g), counters)):
+# written), (sample_t, sample_y), (section_t, section_y, contacts, max_g), counters,
+# sticking time)):
 # sample_t (n_samples,), sample_y (n_samples, dim), samples
 # written; section_t (n_periods + 1,), section_y (n_periods + 1, dim), contacts and max_g
-# per period (row 0: before the first section); rows after a failure are NaN.
+# per period (row 0: before the first section); rows after a failure are NaN; sticking
+# time, the time spent stuck on rigid stops (``kernels.impacts``).
 Recorded = namedtuple("Recorded", ["status", "sample_t", "sample_y", "n_samples", "section_t",
-                                   "section_y", "contacts", "max_g", "counters"])
+                                   "section_y", "contacts", "max_g", "counters",
+                                   "sticking_time"])
 
 
 def classified(raw) -> Classified:
@@ -63,8 +76,8 @@ def classified(raw) -> Classified:
 
 def recorded(raw) -> Recorded:
     """``record``'s plain result, named."""
-    (status, n_written), (sample_t, sample_y), sections, counters = raw
-    return Recorded(status, sample_t, sample_y, n_written, *sections, counters)
+    (status, n_written), (sample_t, sample_y), sections, counters, stuck = raw
+    return Recorded(status, sample_t, sample_y, n_written, *sections, counters, stuck)
 
 
 @njit(cache=True)
@@ -340,7 +353,8 @@ def record(advance, rhs, p, start, n_periods, surfaces, opts, n_samples):
             section_y[n] = y
             contacts[n] = c
             max_g[n] = g
-    return (status, istate[N_SAMPLES]), samples, (section_t, section_y, contacts, max_g), istate
+    return ((status, istate[N_SAMPLES]), samples, (section_t, section_y, contacts, max_g), istate,
+            fstate[T_STUCK])
 
 
 @njit(cache=True)

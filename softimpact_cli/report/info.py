@@ -27,6 +27,7 @@ SUMMARY_KEYS = (
     "analysis", "model", "bodies", "parameters", "outcome", "label", "status_message",
     "classified_by", "second_stage", "period",
     "periods_used", "contacts_on_orbit", "max_penetration", "impacting", "t0",
+    "rigid_impacts", "rigid_chatter_sequences", "rigid_sticking_phases", "rigid_sticking_time",
     "integrator_resolved_method", "integrator_rtol", "integrator_atol",
     "integrator_steps_per_period", "integrator_locate_switches", "wall_s", "complete",
     "scene_source", "scene_sha256", "softimpact_version", "started", "finished", "machine",

@@ -35,9 +35,14 @@ for (_model, _bodies), _system in REGISTRY.items():  # a third body fails here, 
                          f"{_system.bodies} bodies")
 
 MODELS = tuple(sorted({model for model, _ in REGISTRY}))
-LAWS = tuple(_stops.LAWS)  # names of the stop laws (systems/stops.py)
+# names of the stop laws a preset's [coupling] takes (systems/stops.py); the rigid law is a
+# chain's [[stop]] only
+LAWS = tuple(name for name, law in _stops.LAWS.items() if law.soft)
 STOP_LAWS = _stops.LAWS  # {name: StopLaw}
-LAW_KEYS = _stops.LAW_KEYS  # {[coupling] key: LawKey} of the keys only some laws use
+# {[coupling] key: LawKey} of the keys only some of a preset's laws use
+LAW_KEYS = {name: key for name, key in _stops.LAW_KEYS.items()
+            if any(key in _stops.LAWS[law].keys for law in LAWS)}
+STOP_KEYS = _stops.LAW_KEYS  # {[[stop]] key: LawKey}: a chain's, the rigid law's r too
 
 
 def get_system(model: str, bodies: int) -> System:
@@ -51,5 +56,6 @@ def get_system(model: str, bodies: int) -> System:
         ) from None
 
 
-__all__ = ["COUPLING_PARAMETERS", "LAWS", "LAW_KEYS", "MODELS", "REGISTRY", "STOP_LAWS",
+__all__ = ["COUPLING_PARAMETERS", "LAWS", "LAW_KEYS", "MODELS", "REGISTRY", "STOP_KEYS",
+           "STOP_LAWS",
            "Parameter", "Surfaces", "System", "get_system"]

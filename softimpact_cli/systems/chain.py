@@ -30,7 +30,18 @@ Parameter names (``System.parameters``, the names ``pack`` reads): ``w``; per bo
 ``m.i, c.i, k1.i, k2.i, F.i, phi.i`` and ``k_xp.i`` for each extra power p the model
 declares; per kink ``kink.k.x`` (its position) and ``kink.k.k`` (stiffness); per stop
 ``stop.s.d`` (between bodies) or ``stop.s.wall`` (a wall's position), ``stop.s.k_c``,
-``stop.s.c_c`` and its law keys (``stop.s.exponent``).
+``stop.s.c_c`` and its law keys (``stop.s.exponent``); a rigid stop has no ``k_c``,
+``c_c`` but its coefficient of restitution ``stop.s.r``.
+
+Rigid stops (law ``rigid``): no force while free, impacts are velocity resets made by the
+kernels' impact loop (``kernels/impacts.py``), which reads the impact table ``pack``
+appends (its layout there: per rigid stop its contact surface, ``r`` and the direction
+``M^-1 a / (a^T M^-1 a)`` of the impulse, ``a`` the surface's row). The stop's contact
+bit set means *stuck*: the body rests on its wall (acceleration 0) or the two bodies move
+together (one acceleration, the momentum-weighted mean of their free accelerations); the
+surface is not watched while stuck (the impact loop releases it when the contact force
+would pull). Two stuck stops sharing a body are each imposed in turn (exact only when
+they share none).
 """
 
 from __future__ import annotations
@@ -42,6 +53,7 @@ from math import cos, sin
 import numpy as np
 from numba import njit
 
+from ..kernels import impacts
 from . import stops
 from .base import MAX_SURFACES, Parameter, Surfaces, System, relevance_table
 
@@ -153,6 +165,11 @@ class ChainModel:
             has_law_surface(stop.law) for stop in self.stops)
 
     @property
+    def rigid(self) -> tuple[int, ...]:
+        """Indices (0-based) of the rigid stops."""
+        return tuple(s for s, stop in enumerate(self.stops) if not stops.LAWS[stop.law].soft)
+
+    @property
     def max_power(self) -> int:
         return max((3,) + self.powers)
 
@@ -185,8 +202,11 @@ class ChainModel:
                 out.append(Parameter(f"stop.{s}.wall", "1", None, f"wall position of stop {s}"))
             else:
                 out.append(Parameter(f"stop.{s}.d", "1", None, f"gap of stop {s}"))
-            out += [Parameter(f"stop.{s}.k_c", "1", 8.0, f"stiffness of stop {s}", minimum=0.0),
-                    Parameter(f"stop.{s}.c_c", "1", 10.0, f"damping of stop {s}", minimum=0.0)]
+            if stops.LAWS[stop.law].soft:
+                out += [Parameter(f"stop.{s}.k_c", "1", 8.0, f"stiffness of stop {s}",
+                                  minimum=0.0),
+                        Parameter(f"stop.{s}.c_c", "1", 10.0, f"damping of stop {s}",
+                                  minimum=0.0)]
             out += [Parameter(f"stop.{s}.{key.name}", "1", key.default,
                               f"{key.description} (stop {s})", minimum=key.low)
                     for key in stops.LAWS[stop.law].keys]
@@ -237,13 +257,33 @@ class ChainModel:
                    else float(values[f"stop.{s + 1}.d"]))
             block = p[at + S_COUPLING: at + STOP_SIZE]
             block[stops.D] = gap
-            block[stops.KC] = float(values[f"stop.{s + 1}.k_c"])
-            block[stops.CC] = float(values[f"stop.{s + 1}.c_c"])
+            block[stops.KC] = float(values.get(f"stop.{s + 1}.k_c", 0.0))
+            block[stops.CC] = float(values.get(f"stop.{s + 1}.c_c", 0.0))
             block[stops.COS_PHI] = 1.0
             block[stops.LAW] = law.code
             for key in stops.LAW_KEYS.values():
                 block[key.slot] = float(values.get(f"stop.{s + 1}.{key.name}", key.default))
+        if self.rigid:
+            p = np.concatenate([p, self._impact_table(p)])
         return p
+
+    def _impact_table(self, p: np.ndarray) -> np.ndarray:
+        """The rigid stops' table ``kernels.impacts`` reads (its layout there), with the
+        index where it starts as its last entry (the table follows ``p``)."""
+        n = self.bodies
+        masses = np.array([p[int(p[BODY_AT]) + i * (B_POLY + int(p[P])) + B_M]
+                           for i in range(n)])
+        table = [float(len(self.rigid))]
+        for s in self.rigid:
+            at = int(p[STOP_AT]) + STOP_SIZE * s
+            a = self._delta_row(p, at, 2 * n, 0)[0::2]  # d delta / d x_k
+            direction = (a / masses) / float(a @ (a / masses))
+            block = np.zeros(impacts.DIRECTION + n)
+            block[impacts.SURFACE] = s  # stop s's contact surface is surface s
+            block[impacts.RESTITUTION] = p[at + S_COUPLING + stops.RESTITUTION]
+            block[impacts.DIRECTION:] = direction
+            table += list(block)
+        return np.array(table + [float(p.shape[0])])
 
     def surfaces(self, p: np.ndarray) -> Surfaces:
         """Stops' contacts, kinks, then the laws' surfaces (see the module docstring)."""
@@ -272,9 +312,13 @@ class ChainModel:
             offsets.append(-kc * p[at + S_COUPLING + stops.D])
             names.append(f"stop {s + 1} force")
         A = np.array(rows, dtype=np.float64).reshape(len(rows), dim)
-        return Surfaces(A, np.array(offsets, dtype=np.float64),
-                        relevance_table(len(rows), requires), (1 << len(self.stops)) - 1,
-                        tuple(names))
+        relevance = relevance_table(len(rows), requires)
+        for s in self.rigid:  # a stuck rigid stop is released by the impact loop
+            for mode in range(relevance.shape[0]):
+                if mode & (1 << s):
+                    relevance[mode] &= ~(1 << s)
+        return Surfaces(A, np.array(offsets, dtype=np.float64), relevance,
+                        (1 << len(self.stops)) - 1, tuple(names))
 
     @staticmethod
     def _delta_row(p: np.ndarray, at: int, dim: int, velocity: int) -> np.ndarray:
@@ -300,6 +344,31 @@ def _local_mode(p, at, mode):
     if mode & np.int64(p[at + S_LAW_BIT]):
         local |= 2
     return local
+
+
+@njit(cache=True)
+def _stick(p, mode, out, offset):
+    """Impose each stuck rigid stop (its contact bit set) on the accelerations
+    ``out[2 k + offset]``: 0 for a body on its wall, the momentum-weighted mean of the two
+    bodies' free accelerations for a pair, the same float for both (their velocities, equal
+    when they stuck, stay equal bit for bit)."""
+    body_at, body_size = int(p[BODY_AT]), B_POLY + int(p[P])
+    stop_at = int(p[STOP_AT])
+    for s_ in range(int(p[NS])):
+        at = stop_at + STOP_SIZE * s_
+        if p[at + S_COUPLING + stops.LAW] != stops.RIGID:
+            continue
+        if not mode & np.int64(p[at + S_CONTACT_BIT]):
+            continue
+        i, j = int(p[at + S_I]), int(p[at + S_J])
+        if j < 0:
+            out[2 * i + offset] = 0.0
+            continue
+        m_i = p[body_at + i * body_size + B_M]
+        m_j = p[body_at + j * body_size + B_M]
+        common = (m_i * out[2 * i + offset] + m_j * out[2 * j + offset]) / (m_i + m_j)
+        out[2 * i + offset] = common
+        out[2 * j + offset] = common
 
 
 @njit(cache=True)
@@ -345,6 +414,8 @@ def chain_rhs(t, y, p, mode, out):
             out[2 * j + 1] += sign * fc
     for i in range(n):
         out[2 * i + 1] /= p[body_at + i * body_size + B_M]
+    if p[NS] > 0:
+        _stick(p, mode, out, 1)
 
 
 @njit(cache=True)
@@ -404,6 +475,10 @@ def chain_jacobian(t, y, p, mode, jac, dfdt):
         for j in range(2 * n):
             jac[2 * i + 1, j] /= m
         dfdt[2 * i + 1] /= m
+    if p[NS] > 0:
+        _stick(p, mode, dfdt, 1)
+        for j in range(2 * n):  # each column of the Jacobian is stuck as a rate is
+            _stick(p, mode, jac[:, j], 1)
 
 
 # ---------------------------------------------------------------- the System
@@ -437,7 +512,7 @@ def chain_system(model: ChainModel) -> System:
     if problems:
         raise ValueError(problems[0])
     if model not in _BUILT:
-        linear_laws = all(stops.LAWS[stop.law].code != stops.HUNT_CROSSLEY
+        linear_laws = all(stops.LAWS[stop.law].code not in (stops.HUNT_CROSSLEY, stops.RIGID)
                           for stop in model.stops)
         _BUILT[model] = System(
             model="chain",
@@ -452,7 +527,8 @@ def chain_system(model: ChainModel) -> System:
             surfaces=_SurfaceBuilder(model),
             forcing_frequency_index=W,
             piecewise_linear=linear_laws and not model.powers,
-            extra={"catalogue_box": CATALOGUE_BOX, "chain": model},
+            extra={"catalogue_box": CATALOGUE_BOX, "chain": model,
+                   "rigid": bool(model.rigid)},
         )
     return _BUILT[model]
 

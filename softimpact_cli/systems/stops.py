@@ -13,6 +13,11 @@ and the right body on (``x2'' = ... + F_C``). Contact is ``delta >= 0``; outside
   3/2, allowed 1 <= n <= 10). It is continuous at contact onset (no force jump) and may
   pull while ``delta' < -k_c / c_c``, as the formula says; n >= 1 keeps its Jacobian
   finite at onset.
+- ``rigid`` (a chain's stops only): no force and no penetration; an impact reverses the
+  relative normal velocity scaled by the coefficient of restitution ``r`` in [0, 1]
+  (Newton's law, momentum of the two bodies kept; a wall takes the body's velocity
+  alone), chattering passes to sticking. The reset is the kernels' (``kernels/impacts.py``);
+  while the stop's contact bit is set the bodies are stuck (``chain.py``).
 
 How a restoring force and a stop law combine: a pair's module (``duffing.py``,
 ``bilinear.py``) packs its body block and then this module's coupling block
@@ -41,8 +46,8 @@ from .base import Surfaces, relevance_table
 
 # The coupling block (offsets from its start ``at`` in the packed parameters). cos and sin
 # of phi are precomputed so a pair's rhs needs one sine and one cosine per evaluation.
-D, KC, CC, COS_PHI, SIN_PHI, LAW, PHI, EXPONENT = range(8)
-COUPLING_SIZE = 8
+D, KC, CC, COS_PHI, SIN_PHI, LAW, PHI, EXPONENT, RESTITUTION = range(9)
+COUPLING_SIZE = 9
 
 CONTACT_BIT = 1  # surface 0 of every pair: delta = x1 - x2 - d >= 0
 
@@ -50,6 +55,7 @@ CONTACT_BIT = 1  # surface 0 of every pair: delta = x1 - x2 - d >= 0
 PAPER = 0.0
 NO_TENSION = 1.0
 HUNT_CROSSLEY = 2.0
+RIGID = 3.0  # no force: impacts are velocity resets (kernels/impacts.py), a chain's only
 
 
 # ---------------------------------------------------------------- the laws, jitted
@@ -157,11 +163,16 @@ class StopLaw:
     formula: str
     keys: tuple[LawKey, ...] = ()
     surfaces: Callable[[np.ndarray, int], tuple[list, list, list]] = _no_surfaces
+    soft: bool = True  # False: no k_c, c_c (the rigid law); a chain's stops only
 
 
 EXPONENT_KEY = LawKey(
     "exponent", 1.5, 1.0, 10.0, EXPONENT,
     "exponent n of the Hertzian stop (3/2: Hertz; n >= 1 keeps dF/d delta finite at onset)")
+
+RESTITUTION_KEY = LawKey(
+    "r", 0.8, 0.0, 1.0, RESTITUTION,
+    "coefficient of restitution r of the rigid stop: v_rel+ = -r v_rel- (0 plastic, 1 elastic)")
 
 LAWS: dict[str, StopLaw] = {
     law.name: law for law in (
@@ -170,6 +181,8 @@ LAWS: dict[str, StopLaw] = {
                 surfaces=_force_surface),
         StopLaw("hunt-crossley", HUNT_CROSSLEY, "k_c delta^n + c_c delta^n delta' (Hertzian)",
                 keys=(EXPONENT_KEY,)),
+        StopLaw("rigid", RIGID, "impacts: v_rel+ = -r v_rel- (Newton), momentum kept",
+                keys=(RESTITUTION_KEY,), soft=False),
     )
 }
 
@@ -193,7 +206,7 @@ def pack_coupling(values: Mapping[str, float]) -> np.ndarray:
     phi = float(values["phi"])
     block = np.array([float(values["d"]), float(values["k_c"]), float(values["c_c"]),
                       np.cos(phi), np.sin(phi),
-                      get_law(values.get("law", "paper")).code, phi, 0.0])
+                      get_law(values.get("law", "paper")).code, phi, 0.0, 0.0])
     for key in LAW_KEYS.values():
         block[key.slot] = float(values.get(key.name, key.default))
     return block

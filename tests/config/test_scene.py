@@ -6,6 +6,7 @@ import pytest
 
 from softimpact_cli.config import ConfigError
 from softimpact_cli.kinds.scene import load_scene, parse_scene
+from softimpact_cli.systems import stops
 
 GOOD = """
 [system]
@@ -46,7 +47,8 @@ def test_hunt_crossley_scene_reads_its_exponent():
     assert parse_scene(text.format("")).values["exponent"] == 1.5  # the default, n = 3/2
     scene = parse_scene(text.format("exponent = 1\n"))
     assert scene.values["law"] == "hunt-crossley" and scene.values["exponent"] == 1.0
-    assert scene.system.pack(scene.values)[-1] == 1.0  # reaches the kernels' parameters
+    # reaches the kernels' parameters (the coupling block ends the pair's)
+    assert scene.system.pack(scene.values)[stops.EXPONENT - stops.COUPLING_SIZE] == 1.0
     assert "exponent" not in parse_scene(GOOD).values  # other laws do not carry it
 
 

@@ -43,8 +43,14 @@ def test_registry_names_codes_and_keys():
     assert LAWS == ("paper", "no-tension", "hunt-crossley")
     codes = [law.code for law in stops.LAWS.values()]
     assert len(set(codes)) == len(codes)
-    assert set(stops.LAW_KEYS) == {"exponent"}
+    assert set(stops.LAW_KEYS) == {"exponent", "r"}
     assert stops.LAWS["hunt-crossley"].keys == (stops.EXPONENT_KEY,)
+    # the rigid law (a chain's stops only: not among a preset's LAWS) has r, no k_c, c_c
+    rigid = stops.LAWS["rigid"]
+    assert rigid.keys == (stops.RESTITUTION_KEY,) and not rigid.soft
+    assert all(law.soft for name, law in stops.LAWS.items() if name != "rigid")
+    assert stops.RESTITUTION_KEY.check(0.0) is None and stops.RESTITUTION_KEY.check(1.0) is None
+    assert stops.RESTITUTION_KEY.check(1.01) and stops.RESTITUTION_KEY.check(-0.01)
     key = stops.EXPONENT_KEY
     assert key.default == 1.5 and key.check(1.0) is None and key.check(10.0) is None
     assert key.check(0.99) and key.check(0.5) and key.check(10.5)
