@@ -84,13 +84,17 @@ class StepControl:
 @dataclass
 class Point:
     """One solution on a branch: u = (y, lam) (n + 1,), the map there, the unit tangent
-    (n + 1,), the arclength step that reached it and the Newton steps it took."""
+    (n + 1,), the arclength step that reached it and the Newton steps it took (and, on a
+    chain, its stops' gaps once computed)."""
 
     u: np.ndarray
     value: MapValue
     tangent: np.ndarray
     step: float = 0.0
     newton: int = 0
+    # a chain's (n_stops,) maxima of each stop's compression along the orbit, once asked
+    # for (continuation_grazing.kernel_gaps)
+    stop_gaps: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def state(self) -> np.ndarray:

@@ -1,11 +1,19 @@
 """[analysis] kind = "continuation": branches of periodic orbits, stable and unstable,
 followed in one parameter by pseudo-arclength continuation, with folds, branch points,
-period doublings, Neimark-Sacker points and grazing located (``analysis/continuation*.py``)."""
+period doublings, Neimark-Sacker points and grazing located (``analysis/continuation*.py``).
+
+On a chain (``model = "chain"``) the parameter is any of the chain's by its name (``w``,
+``F.2``, ``stop.1.d``, ``phi.3``...), start = "catalogue" follows the non-impacting
+products of the bodies' attractors (each body searched from [catalogue], as the
+bifurcation kind does; ``branches`` names them) and start = "state" the orbit a trajectory
+reaches, impacting or not; grazing is located for each stop."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from ..analysis.catalogue import sample_states
+from ..analysis.chain_dcrit import chain_products
 from ..analysis.continuation import StepControl
 from ..analysis.continuation_branches import continue_starts
 from ..analysis.continuation_dataset import continuation_dataset
@@ -13,6 +21,7 @@ from ..analysis.continuation_sweep import sweeps
 from ..analysis.engine import Problem, classify_state
 from ..analysis.shooting import OrbitMap
 from ..config.axes import allowed_axes
+from ..config.chain_scene import CHAIN
 from ..config.reader import ConfigError, positive
 from ..kernels.codes import CONVERGED
 from ..report.continuation import continuation_info, format_continuation
@@ -28,8 +37,8 @@ MAX_POINTS = 100_000
 class ContinuationAnalysis(StepControl):
     """[analysis] kind = "continuation".
 
-    parameter : the continued parameter (d, phi, k_c, c_c for a pair; F, w always); it
-        starts at the scene's value, which must lie in [low, high]
+    parameter : the continued parameter (d, phi, k_c, c_c for a pair; F, w always; any of
+        a chain's by name); it starts at the scene's value, which must lie in [low, high]
     start : "catalogue" (every attractor or combination of the [catalogue] search, or
         those named in ``branches``) or "state" (the periodic orbit a trajectory from
         ``state`` at t = 0 converges to)
@@ -53,12 +62,21 @@ class ContinuationAnalysis(StepControl):
 
 
 def read(sec, ctx) -> ContinuationAnalysis:
-    # any model parameter the scene has (config.axes: the [grid] axes but t0)
-    allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
+    chain = ctx.system.model == CHAIN
+    if chain:  # any of the chain's parameters by its name
+        allowed = tuple(p.name for p in ctx.system.parameters)
+    else:  # any model parameter the scene has (config.axes: the [grid] axes but t0)
+        allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
     parameter = sec.choice("parameter", None, allowed)
     low, high = sec.number("low", None), sec.number("high", None)
     if not low < high:
         raise sec.fail("high", f"must be > low ({low!r}), got {high!r}")
+    if chain:
+        checked = {p.name: p for p in ctx.system.parameters}[parameter]
+        for key, v in (("low", low), ("high", high)):
+            problem = checked.check(v)
+            if problem:
+                raise sec.fail(key, f"{problem} (a value of {parameter}), got {v!r}")
     value = float(ctx.values[parameter])
     if not low <= value <= high:
         raise sec.fail("low", f"the branch starts at the scene's {parameter} = {value!r}, "
@@ -66,8 +84,9 @@ def read(sec, ctx) -> ContinuationAnalysis:
     start, state = read_start(sec, ctx.system, STARTS, at=" at t = 0")
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
-        raise sec.fail("branches", f"must be a list of catalogue names like 'L1^1' or "
-                                   f"'L1^1 R1-0^2', got {raw!r}")
+        example = "product names like '1:P1^1 2:P1-0^2'" if chain else \
+            "catalogue names like 'L1^1' or 'L1^1 R1-0^2'"
+        raise sec.fail("branches", f"must be a list of {example}, got {raw!r}")
     if raw and start != "catalogue":
         raise sec.fail("branches", "only with start = 'catalogue'")
     step = sec.number("step", 0.02, positive)
@@ -116,6 +135,8 @@ def starts(scene) -> list[tuple[str, object, int]]:
                               f"closer to one or use start = 'catalogue'")
         return [("orbit from state", cls.orbit[-1], cls.period)]
 
+    if scene.system.model == CHAIN:
+        return chain_starts(scene)
     cat = scene_catalogue(scene)
     for name in a.branches:
         if name not in cat.names:
@@ -124,6 +145,21 @@ def starts(scene) -> list[tuple[str, object, int]]:
     orbits = cat.orbits
     return [(name, orbit[0], orbit.shape[0]) for name, orbit in orbits.items()
             if not a.branches or name in a.branches]
+
+
+def chain_starts(scene) -> list[tuple[str, object, int]]:
+    """A chain's catalogue starts: its non-impacting products (each body's attractors
+    searched from [catalogue]), named one token per body (``chain_dcrit.Product.name``)."""
+    a, c = scene.analysis, scene.catalogue
+    found = chain_products(scene.system, dict(scene.values),
+                           sample_states(c.box, c.grid, c.random, c.seed))
+    names = [p.name for p in found]
+    for name in a.branches:
+        if name not in names:
+            raise ConfigError(f"{scene.source}: [analysis] branches: {name!r} is not a "
+                              f"non-impacting product of the chain ({', '.join(names)})")
+    return [(p.name, p.orbit[0], p.orbit.shape[0]) for p in found
+            if not a.branches or p.name in a.branches]
 
 
 def run(scene, progress=None, **_):
@@ -148,7 +184,8 @@ def run(scene, progress=None, **_):
         if tick:
             tick(len(chosen))
     ds = continuation_dataset(base, branches, fates, brute, lam0, (a.low, a.high))
-    if a.start == "catalogue":  # its order gives each solution the colour of the basins
+    if a.start == "catalogue" and scene.system.model != CHAIN:
+        # its order gives each solution the colour of the basins
         ds.attrs["catalogue_names"] = list(scene_catalogue(scene).names)
     return ds
 
@@ -167,10 +204,12 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 # what each [analysis] key means (the scene-key reference)
 KEYS = {
-    "parameter": "the continued parameter (its value in the scene is where the branches start)",
+    "parameter": "the continued parameter (its value in the scene is where the branches "
+                 "start; on a chain any of its parameters by name: w, F.2, stop.1.d, phi.3)",
     "low": "the lower end of the continued range",
     "high": "the upper end",
-    "start": '"catalogue" (every catalogue orbit, or branches) or "state" (Newton from state)',
+    "start": '"catalogue" (every catalogue orbit, or branches; on a chain its non-impacting '
+             'products) or "state" (Newton from state)',
     "state": 'start = "state": a point near the orbit at t = 0: [x1, v1, x2, v2] ([x, v] for one '
              "body)",
     "branches": 'catalogue names of the orbits to follow, like "L1^1" or "L1^1 R1-0^2" (default: '

@@ -134,11 +134,10 @@ def test_example_chain_prints_the_commented_scene():
 @pytest.mark.parametrize("kind, extra, message", [
     ("basins", "", "[analysis] kind = 'basins': not yet for model = \"chain\" (its attractors "
                    "are named from one body's catalogue"),
-    ("continuation", "", "[analysis] kind = 'continuation': not yet for model = \"chain\" (its "
-                         "shooting and events follow a pair's one stop, x1 - x2 - d; on a "
-                         "chain kind \"bifurcation\" follows the products along any "
-                         "parameter); a chain runs kind 'trajectory' or 'lyapunov' or "
-                         "'dcrit' or 'bifurcation'"),
+    ("design", "", "[analysis] kind = 'design': not yet for model = \"chain\" (it chooses "
+                   "a pair's (d, phi, k_c, c_c), not yet a chain's stops); a chain runs kind "
+                   "'trajectory' or 'lyapunov' or 'dcrit' or 'bifurcation' or "
+                   "'continuation'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
                   "curves from the catalogue's orbits, and a chain has no catalogue yet"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
