@@ -138,9 +138,9 @@ def test_example_chain_prints_the_commented_scene():
                          "shooting and events follow a pair's one stop, x1 - x2 - d; on a "
                          "chain kind \"bifurcation\" follows the products along any "
                          "parameter); a chain runs kind 'trajectory' or 'lyapunov' or "
-                         "'dcrit' or 'bifurcation'"),
+                         "'dcrit' or 'bifurcation' or 'catalogue'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
-                  "curves from the catalogue's orbits, and a chain has no catalogue yet"),
+                  "curves from a pair's combinations and follows them in (d, phi)"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
                                           "a state"),
 ])
