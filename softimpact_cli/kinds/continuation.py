@@ -3,17 +3,15 @@ followed in one parameter by pseudo-arclength continuation, with folds, branch p
 period doublings, Neimark-Sacker points and grazing located (``analysis/continuation*.py``).
 
 On a chain (``model = "chain"``) the parameter is any of the chain's by its name (``w``,
-``F.2``, ``stop.1.d``, ``phi.3``...), start = "catalogue" follows the non-impacting
-products of the bodies' attractors (each body searched from [catalogue], as the
-bifurcation kind does; ``branches`` names them) and start = "state" the orbit a trajectory
-reaches, impacting or not; grazing is located for each stop."""
+``F.2``, ``stop.1.d``, ``phi.3``...), start = "catalogue" follows the chain catalogue's
+products that no stop touches (``branches`` names any product) and start = "state" the
+orbit a trajectory reaches, impacting or not; grazing is located for each stop."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
 from ..analysis.catalogue import sample_states
-from ..analysis.chain_dcrit import chain_products
 from ..analysis.continuation import StepControl
 from ..analysis.continuation_branches import continue_starts
 from ..analysis.continuation_dataset import continuation_dataset
@@ -25,7 +23,7 @@ from ..config.chain_scene import CHAIN
 from ..config.reader import ConfigError, positive
 from ..kernels.codes import CONVERGED
 from ..report.continuation import continuation_info, format_continuation
-from ..store.catalogues import scene_catalogue
+from ..store.catalogues import build_catalogue, scene_catalogue
 from .base import AnalysisKind, PlotSpec, Sections, read_start
 
 STARTS = ("catalogue", "state")
@@ -84,7 +82,7 @@ def read(sec, ctx) -> ContinuationAnalysis:
     start, state = read_start(sec, ctx.system, STARTS, at=" at t = 0")
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
-        example = "product names like '1:P1^1 2:P1-0^2'" if chain else \
+        example = "product names like 'B1:P1^1 B2:P1-0^2 B3:P1-0^1'" if chain else \
             "catalogue names like 'L1^1' or 'L1^1 R1-0^2'"
         raise sec.fail("branches", f"must be a list of {example}, got {raw!r}")
     if raw and start != "catalogue":
@@ -148,18 +146,24 @@ def starts(scene) -> list[tuple[str, object, int]]:
 
 
 def chain_starts(scene) -> list[tuple[str, object, int]]:
-    """A chain's catalogue starts: its non-impacting products (each body's attractors
-    searched from [catalogue]), named one token per body (``chain_dcrit.Product.name``)."""
+    """A chain's catalogue starts (``analysis/chain_catalogue.py``, each body searched from
+    [catalogue]): the products of its bodies' attractors that no stop touches at the
+    scene's values, or the products named in ``branches`` (any of them)."""
     a, c = scene.analysis, scene.catalogue
-    found = chain_products(scene.system, dict(scene.values),
-                           sample_states(c.box, c.grid, c.random, c.seed))
-    names = [p.name for p in found]
+    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
     for name in a.branches:
-        if name not in names:
+        if name not in cat.names:
             raise ConfigError(f"{scene.source}: [analysis] branches: {name!r} is not a "
-                              f"non-impacting product of the chain ({', '.join(names)})")
-    return [(p.name, p.orbit[0], p.orbit.shape[0]) for p in found
-            if not a.branches or p.name in a.branches]
+                              f"product of the chain's catalogue ({', '.join(cat.names)})")
+    chosen = [p for p, alive in zip(cat.products, cat.survives, strict=True)
+              if (p.name in a.branches if a.branches else alive)]
+    if not chosen:
+        raise ConfigError(f"{scene.source}: [catalogue]: no product of the bodies' attractors "
+                          f"is apart from every stop at the scene's values (products: "
+                          f"{', '.join(cat.names) or 'none'}); name one in [analysis] "
+                          "branches or start = 'state'")
+    return [(p.name, p.orbit[0], p.orbit.shape[0]) for p in chosen]
 
 
 def run(scene, progress=None, **_):

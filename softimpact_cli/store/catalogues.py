@@ -22,8 +22,10 @@ from ..analysis.catalogue import (
     search_from_arrays,
     search_key_material,
 )
+from ..analysis.chain_catalogue import ChainCatalogue, build_chain_catalogue
 from ..analysis.engine import Problem
 from ..config import IntegratorSettings
+from ..config.chain_scene import CHAIN
 from ..config.scene import forcing_period
 from ..systems import System
 from ..systems.base import check_bodies
@@ -66,8 +68,13 @@ def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:
 
 def build_catalogue(system: System, values: dict, integrator: IntegratorSettings,
                     states: np.ndarray, t0: float = 0.0, match_tol: float = 1e-3,
-                    progress=None) -> Catalogue:
-    """The full catalogue: left attractors, and for a pair the right ones and combinations."""
+                    progress=None) -> Catalogue | ChainCatalogue:
+    """The full catalogue: left attractors, and for a pair the right ones and combinations;
+    for a chain (``model = "chain"``) its :class:`ChainCatalogue` (each body searched
+    through the cache; ``progress`` gets N ticks per body)."""
+    if system.model == CHAIN:
+        return build_chain_catalogue(system, values, integrator, states, t0, match_tol,
+                                     progress, search=cached_body_search)
     check_bodies(system.bodies, "build_catalogue (left and right attractors)")
     problem = body_problem(system, values, integrator)
     search = cached_body_search(problem, states, t0, match_tol, progress)

@@ -137,9 +137,9 @@ def test_example_chain_prints_the_commented_scene():
     ("design", "", "[analysis] kind = 'design': not yet for model = \"chain\" (it chooses "
                    "a pair's (d, phi, k_c, c_c), not yet a chain's stops); a chain runs kind "
                    "'trajectory' or 'lyapunov' or 'dcrit' or 'bifurcation' or "
-                   "'continuation'"),
+                   "'catalogue' or 'continuation'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
-                  "curves from the catalogue's orbits, and a chain has no catalogue yet"),
+                  "curves from a pair's combinations and follows them in (d, phi)"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
                                           "a state"),
 ])

@@ -43,7 +43,6 @@ step = 0.05
 max_step = 0.1
 max_points = 8
 switch_depth = 0
-branches = ["1:P1^1 2:P1-0^1"]
 
 [catalogue]
 grid = 3
@@ -52,7 +51,7 @@ random = 0
 
 
 PARAMETER = 'parameter = "stop.1.d"\nlow = 1.85\nhigh = 2.0'
-BRANCHES = 'branches = ["1:P1^1 2:P1-0^1"]'
+BRANCHES = "switch_depth = 0"
 
 
 @pytest.mark.parametrize("old, new, message", [
@@ -63,7 +62,7 @@ BRANCHES = 'branches = ["1:P1^1 2:P1-0^1"]'
     (PARAMETER, 'parameter = "stop.1.d"\nlow = 1.85\nhigh = 1.9',
      "[analysis] low: the branch starts at the scene's stop.1.d = 2.0"),
     (BRANCHES, "branches = [1]", "[analysis] branches: must be a list of product names like "
-                                 "'1:P1^1 2:P1-0^2', got [1]"),
+                                 "'B1:P1^1 B2:P1-0^2 B3:P1-0^1', got [1]"),
 ])
 def test_bad_keys_on_a_chain_are_one_line(old, new, message):
     text = SCENE.replace(old, new)
@@ -74,10 +73,10 @@ def test_bad_keys_on_a_chain_are_one_line(old, new, message):
 
 
 def test_a_product_no_search_finds_is_named_with_those_found(tmp_path):
-    scene = parse_scene(SCENE.replace("1:P1^1 2:P1-0^1", "1:P3^1 2:P1-0^1")
+    scene = parse_scene(SCENE.replace("switch_depth = 0", 'branches = ["L3^1 R1-0^1"]')
                         + f'[output]\npath = "{tmp_path / "x.h5"}"\n', "s.toml")
-    with pytest.raises(ConfigError, match=r"branches: '1:P3\^1 2:P1-0\^1' is not a "
-                                          r"non-impacting product of the chain \(1:P1\^1 "):
+    with pytest.raises(ConfigError, match=r"branches: 'L3\^1 R1-0\^1' is not a product of "
+                                          r"the chain's catalogue \(L1\^1 R1-0\^1, "):
         run_scene(scene)
     assert not (tmp_path / "x.h5").exists()
 
@@ -94,7 +93,8 @@ def test_a_chain_continuation_runs_and_info_and_plot_name_the_grazed_stop(tmp_pa
     assert event["kind"] == "grazing" and event["stop"] == 1
     # the product's max of x1 - x2 (chain_dcrit's critical value; tested there)
     assert event["parameter"] == pytest.approx(1.8972862, abs=1e-6)
-    assert data["continuation"]["starts"] == {"1:P1^1 2:P1-0^1": "traced"}
+    # the catalogue's products no stop touches at d = 2 (not the large orbit's, L1^2 ...)
+    assert data["continuation"]["starts"] == {"L1^1 R1-0^1": "traced"}
     text = runner.invoke(main, ["info", str(out)]).output
     assert "grazing stop 1   stop.1.d = 1.89728" in text
     plot = runner.invoke(main, ["plot", "continuation", str(out), "-o", str(png)])
