@@ -3,7 +3,8 @@ independent references:
 
 (a) stops that never engage: the chain's branch is the product of the single Duffing
     body's branches (each body's state a fixed point of the preset body's map, the
-    multipliers the union of the bodies', the folds the body's own folds);
+    multipliers the union of the bodies', the folds the body's own folds), and a body's
+    period doubling is the chain's, switched onto;
 (b) an impacting branch (two stops, one a wall, and a kink): the salted monodromy against
     central differences of the stroboscopic map, wherever the section point lies off
     every switching surface (on one, the map itself has a corner);
@@ -69,6 +70,40 @@ def test_a_chain_whose_stop_never_engages_continues_as_the_product_of_its_bodies
     assert chain_folds == pytest.approx(own_folds, abs=1e-8)
     for e in branch.events:  # a multiplier on +1, the other three the bodies' others
         assert np.min(np.abs(e.point.multipliers - 1.0)) < 1e-7
+
+
+UEDA_P2 = np.array([0.79271067, 0.73734594])  # Ueda's period-2 orbit at F = 5 (t = 0)
+
+
+def test_a_period_doubling_of_one_body_is_the_chains_and_is_switched_onto():
+    """Body 2 is Ueda's oscillator (x'' + 0.05 x' + x^3 = F.2 sin t), body 1 a linear one,
+    the stop far apart: along F.2 the chain's period-2 product doubles where the single
+    body's own continuation doubles (multiplier -1), and the switched branch holds
+    fixed points of P^4 that are not fixed points of P^2, body 1 still on its orbit."""
+    model = ChainModel(2, stops=(Stop(1, 2),))
+    values = chain_values(model, 1.0, {"c": 0.05, "k1": [2.0, 0.0], "k2": [0.0, 1.0],
+                                       "F": [0.2, 5.0], "phi": 0.0},
+                          stop_values=[{"d": 50.0}])
+    chain = OrbitMap(chain_system(model), values, "F.2", 1)
+    settings = Settings((5.0, 5.3), step=0.02, max_step=0.05)
+    start = np.concatenate([np.zeros(2), UEDA_P2])
+    branches, _ = continue_starts(chain, [("product", start, 2)], 5.0, settings,
+                                  switch_depth=1)
+    ueda = OrbitMap(BODY, {**BODY.defaults(), "c": 0.05, "k1": 0.0, "k2": 1.0, "F": 5.0,
+                           "w": 1.0}, "F", 1)
+    (alone,), _ = continue_starts(ueda, [("P2", UEDA_P2, 2)], 5.0, settings, switch_depth=0)
+    (own,) = [e.point.parameter for e in alone.events if e.kind == "period doubling"]
+    parent, doubled = branches
+    (pd,) = [e for e in parent.events if e.kind == "period doubling"]
+    assert pd.point.parameter == pytest.approx(own, abs=1e-8)
+    assert np.min(np.abs(pd.point.multipliers + 1.0)) < 1e-8
+    assert doubled.periods == 4 and doubled.parent == 0
+    point = doubled.points[-1]
+    twice = chain.with_periods(2).image(point.state, point.parameter)[1]
+    four = chain.with_periods(4).image(point.state, point.parameter)[1]
+    assert np.max(np.abs(four - point.state)) < 1e-9
+    assert np.max(np.abs(twice - point.state)) > 1e-3
+    assert np.max(np.abs(twice[:2] - point.state[:2])) < 1e-9  # body 1: period 1
 
 
 IMPACTING = ChainModel(2, kinks=(Kink(1, "left"),), stops=(Stop(1, 2), Stop(2, 0, "left")))
