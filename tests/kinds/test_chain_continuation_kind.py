@@ -7,8 +7,10 @@ from __future__ import annotations
 import json
 
 import pytest
+import xarray as xr
 from click.testing import CliRunner
 
+from softimpact_cli import plot as si_plot
 from softimpact_cli.cli import main
 from softimpact_cli.config import ConfigError
 from softimpact_cli.kinds.run import run_scene
@@ -100,3 +102,7 @@ def test_a_chain_continuation_runs_and_info_and_plot_name_the_grazed_stop(tmp_pa
     plot = runner.invoke(main, ["plot", "continuation", str(out), "-o", str(png)])
     assert plot.exit_code == 0, plot.output
     assert png.stat().st_size > 10_000
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        fig = si_plot.continuation(ds.load())
+    labels = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert labels.count("G1") == 2  # the grazed stop, beside its marker on both bodies' panels
