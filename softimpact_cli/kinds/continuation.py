@@ -172,7 +172,9 @@ def run(scene, progress=None, **_):
     lam0 = float(values[a.parameter])
     chosen = starts(scene)
     base = OrbitMap(scene.system, values, a.parameter, 1)
-    settings = a.settings((a.low, a.high))
+    # a chain's branches cross the corners where their section point crosses a stop's
+    # surface; the presets' stop there as they did (their results do not move)
+    settings = a.settings((a.low, a.high), cross_corners=scene.system.model == CHAIN)
     tick = progress(len(chosen) * (2 if a.brute_force_step else 1)) if progress else None
     branches, fates = continue_starts(base, [(n, s, p) for n, s, p in chosen], lam0, settings,
                                       a.switch_depth, tick)

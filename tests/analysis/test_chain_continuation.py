@@ -23,7 +23,7 @@ from softimpact_cli.analysis.chain_dcrit import (
     critical_values,
     uncoupled_values,
 )
-from softimpact_cli.analysis.continuation import Settings, start_point
+from softimpact_cli.analysis.continuation import Settings, follow, section_corner, start_point
 from softimpact_cli.analysis.continuation_branches import continue_starts
 from softimpact_cli.analysis.continuation_dataset import continuation_dataset
 from softimpact_cli.analysis.engine import Problem, flow
@@ -122,19 +122,27 @@ IMPACTING_START = np.array([-1.74602951, -1.14065545, -0.15170035, -0.9600022])
 
 @pytest.mark.slow
 def test_an_impacting_branchs_monodromy_is_the_derivative_of_the_stroboscopic_map():
-    """Followed down in phi.2, the branch grazes the wall (stop 2), folds and comes back
-    with both stops engaged: at each point whose section lies off every surface (by 1e-3)
-    the salted monodromy equals the central differences of P to 1e-6, while the
-    variational flow without saltation is far from it."""
+    """Followed down in phi.2 from 2, the branch grazes the wall (stop 2), folds, comes
+    back with both stops engaged, crosses the corner where its section point crosses stop
+    2's surface, folds again and goes down to the bound: at each point whose section lies
+    off every surface (by 1e-3) the salted monodromy equals the central differences of P
+    to 1e-6, while the variational flow without saltation is far from it."""
     system = chain_system(IMPACTING)
     orbit_map = OrbitMap(system, impacting_values(), "phi.2", 1)
-    settings = Settings((1.7, 2.0), step=0.05, max_step=0.1, max_points=20)
+    settings = Settings((1.7, 2.0), step=0.05, max_step=0.2, max_points=60,
+                        cross_corners=True)
     (branch,), _ = continue_starts(orbit_map, [("impacting", IMPACTING_START, 1)], 2.0,
                                    settings, switch_depth=0)
+    assert branch.ends == ("parameter bound 1.7", "parameter bound 2")
     kinds = [(e.kind, e.stop) for e in branch.events]
-    assert ("grazing", 2) in kinds and ("fold", 0) in kinds
-    fold = next(e for e in branch.events if e.kind == "fold")
-    assert np.min(np.abs(fold.point.multipliers - 1.0)) < 1e-6
+    assert sorted(kinds) == [("fold", 0), ("fold", 0), ("grazing", 2)]
+    for fold in (e for e in branch.events if e.kind == "fold"):
+        assert np.min(np.abs(fold.point.multipliers - 1.0)) < 1e-6
+    stable = [p.stable for p in branch.points]
+    assert stable[0] and stable[-1] and not all(stable)  # stable, unstable, stable
+    corners = [i for i in range(len(branch.points) - 1)
+               if section_corner(orbit_map, branch.points[i].u, branch.points[i + 1].u)]
+    assert len(corners) == 1  # the section point crossed stop 2's surface once
     both = [p for p in branch.points if np.all(p.stop_gaps > 0.05)]
     assert both, "the branch comes back with both stops engaged"
     checked = 0
@@ -146,12 +154,39 @@ def test_an_impacting_branchs_monodromy_is_the_derivative_of_the_stroboscopic_ma
         reference = finite_difference_monodromy(problem, point.state, 0.0, 1)
         assert np.max(np.abs(point.value.monodromy - reference)) < 1e-6
         checked += 1
-    assert checked >= 4
+    assert checked >= 6
     last = both[-1]
     var = Problem(variational_system(system), orbit_map.problem(last.parameter).values,
                   SHOOTING)
     plain = flow(var, initial_variational_state(last.state), 0.0, var.period)[1][4:]
     assert np.max(np.abs(plain.reshape(4, 4) - last.value.monodromy)) > 1e-2
+
+
+# the unstable impacting orbit between the branch's two folds at phi.2 = 1.87 (both stops
+# engaged; its section point reaches stop 2's surface near phi.2 = 1.915)
+MIDDLE = np.array([-2.021846440957898, -1.4972851505335925, -0.5364178306508768,
+                   -1.4671759760229692])
+
+
+def test_the_presets_step_control_ends_at_a_corner_that_chains_cross():
+    """From the unstable orbit up in phi.2: with the presets' step control the leg ends
+    where its section point reaches stop 2's surface; crossing corners, it passes it
+    (the tangent turning by ~60 degrees there) and reaches the fold beyond."""
+    orbit_map = OrbitMap(chain_system(IMPACTING), impacting_values(), "phi.2", 1)
+    first = start_point(orbit_map, MIDDLE, 1.87, 1e-10)
+    assert first is not None and not first.stable
+    legs = {}
+    for cross in (False, True):
+        settings = Settings((1.7, 1.95), step=0.05, min_step=1e-4, max_step=0.2,
+                            max_points=12, cross_corners=cross)
+        legs[cross] = follow(orbit_map, first, settings, +1.0)
+        crossed = [section_corner(orbit_map, a.u, b.u) for a, b in
+                   zip(legs[cross].points[:-1], legs[cross].points[1:], strict=True)]
+        assert crossed.count(True) == int(cross)
+    assert legs[False].end == "step too small" and legs[True].end == "max points"
+    # across the corner the branch goes on to its fold (it turns back in phi.2)
+    lam = [p.parameter for p in legs[True].points]
+    assert max(lam) > max(p.parameter for p in legs[False].points) and lam[-1] < max(lam)
 
 
 GRAZING = ChainModel(2, stops=(Stop(1, 2), Stop(2, 0, "left")))
