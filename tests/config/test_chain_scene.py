@@ -132,13 +132,14 @@ def test_example_chain_prints_the_commented_scene():
 
 
 @pytest.mark.parametrize("kind, extra, message", [
-    ("basins", "", "[analysis] kind = 'basins': not yet for model = \"chain\" (its attractors "
-                   "are named from one body's catalogue"),
+    ("tipping", "", "[analysis] kind = 'tipping': not yet for model = \"chain\" (its attractors "
+                    "are named from one body's catalogue"),
     ("continuation", "", "[analysis] kind = 'continuation': not yet for model = \"chain\" (its "
                          "shooting and events follow a pair's one stop, x1 - x2 - d; on a "
                          "chain kind \"bifurcation\" follows the products along any "
                          "parameter); a chain runs kind 'trajectory' or 'lyapunov' or "
-                         "'dcrit' or 'bifurcation' or 'catalogue'"),
+                         "'dcrit' or 'bifurcation' or 'catalogue' or 'basins' or "
+                         "'stability'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
                   "curves from a pair's combinations and follows them in (d, phi)"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
