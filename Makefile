@@ -24,7 +24,7 @@ $(STAMP): pyproject.toml
 # on events with generous deadlines, not on an idle machine; kernels a test compiles are
 # saved under a lock (kernels/numba_cache.py), so the two workers may compile at once.
 test: $(STAMP)
-	$(PY) -m pytest -n 2 $(PYTEST_ARGS)
+	SOFTIMPACT_HYPOTHESIS=ci $(PY) -m pytest -n 2 $(PYTEST_ARGS)
 
 # The suite without the tests marked slow, on both cores: about 3.5 minutes (3 min 38 s,
 # 2026-11-26).

@@ -1,7 +1,10 @@
 """Session-wide settings: the catalogue cache lives in a temporary folder, never in the
 user's ~/.cache (subprocesses the tests start inherit the variable); hypothesis has no
 per-example deadline (a first example may compile a kernel, and a shared machine's load
-is not a property of the code); SIGINT is not left ignored (see below)."""
+is not a property of the code) and, in `make test` (the CI gate), draws the same examples
+every run (SOFTIMPACT_HYPOTHESIS=ci: a gate that passes or fails by chance tells nothing;
+`make test-fast` keeps drawing new ones, and SOFTIMPACT_HYPOTHESIS=explore draws 20 times
+as many where a test does not set its own count); SIGINT is not left ignored (see below)."""
 
 import os
 import shutil
@@ -11,7 +14,9 @@ import tempfile
 from hypothesis import settings
 
 settings.register_profile("softimpact", deadline=None)
-settings.load_profile("softimpact")
+settings.register_profile("ci", deadline=None, derandomize=True, database=None)
+settings.register_profile("explore", deadline=None, max_examples=2000)
+settings.load_profile(os.environ.get("SOFTIMPACT_HYPOTHESIS", "softimpact"))
 
 _CACHE = tempfile.mkdtemp(prefix="softimpact-test-cache-")
 os.environ["SOFTIMPACT_CACHE_DIR"] = _CACHE
