@@ -46,11 +46,11 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
-CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "continuation")
+CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "basins",
+               "stability", "continuation")
 _PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
                "combinations (L/R names); a chain's are not named yet")
 CHAIN_REFUSALS = {
-    "basins": _PAIR_NAMES, "stability": _PAIR_NAMES,
     "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
     "fatal_shock": _PAIR_NAMES,
     "map": ("it predicts a pair's surviving combinations over (d, phi); on a chain kind "

@@ -12,7 +12,7 @@ import os
 from dataclasses import dataclass, replace
 
 from ..analysis.maps import add_map_counts
-from ..config.axes import GRID_AXES, catalogue_axes, every_axis, parameter_axes
+from ..config.axes import GRID_AXES, catalogue_axes, every_axis, is_chain, parameter_axes
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
 from ..config.scene import thin
@@ -57,7 +57,7 @@ def _reader(kind: str, settings: type[SweepSettings] = SweepAnalysis):
 def sections(analysis, ctx) -> Sections:
     source, doc = ctx.source, ctx.doc
     grid = read_grid(source, doc, ctx.values, ctx.system.bodies, ctx.period, ctx.check_axis,
-                     parameter_axes(ctx.system))
+                     parameter_axes(ctx.system), chain=is_chain(ctx.system))
     initial = read_initial_conditions(source, doc, ctx.system.state_names, ctx.period,
                                       "t0" in grid.swept, "w" in grid.swept)
     total = grid.size * initial.count

@@ -22,7 +22,12 @@ from ..analysis.catalogue import (
     search_from_arrays,
     search_key_material,
 )
-from ..analysis.chain_catalogue import ChainCatalogue, build_chain_catalogue
+from ..analysis.chain_catalogue import (
+    ChainCatalogue,
+    build_chain_catalogue,
+    chain_catalogue_dataset,
+)
+from ..analysis.chain_dcrit import body_problem as chain_body_problem
 from ..analysis.engine import Problem
 from ..config import IntegratorSettings
 from ..config.chain_scene import CHAIN
@@ -54,6 +59,25 @@ def with_catalogue(ds: xr.Dataset, cat: Catalogue, scene, *,
     ds.attrs["analysis"] = scene.analysis.kind
     ds.attrs["forcing_period"] = forcing_period(scene.values)
     return ds
+
+
+def catalogue_table(cat: Catalogue | ChainCatalogue, system: System,
+                    integrator: IntegratorSettings) -> xr.Dataset:
+    """The catalogue's dataset: a preset's (``catalogue_dataset``) or a chain's
+    (``chain_catalogue_dataset``)."""
+    if isinstance(cat, ChainCatalogue):
+        return chain_catalogue_dataset(cat, system)
+    return catalogue_dataset(cat, system, integrator)
+
+
+def scene_chain_searches(scene, progress=None) -> list[BodySearch]:
+    """Each body of a chain scene searched alone over its [catalogue] section's initial
+    conditions at t0 = 0, through the catalogue cache (in body order)."""
+    c, states = scene.catalogue, catalogue_states(scene)
+    return [cached_body_search(chain_body_problem(scene.system, scene.values, i,
+                                                  scene.integrator), states, 0.0,
+                               c.match_tol, progress)
+            for i in range(1, scene.system.bodies + 1)]
 
 
 def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:

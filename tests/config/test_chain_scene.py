@@ -132,12 +132,12 @@ def test_example_chain_prints_the_commented_scene():
 
 
 @pytest.mark.parametrize("kind, extra, message", [
-    ("basins", "", "[analysis] kind = 'basins': not yet for model = \"chain\" (its attractors "
-                   "are named from one body's catalogue"),
+    ("tipping", "", "[analysis] kind = 'tipping': not yet for model = \"chain\" (its attractors "
+                    "are named from one body's catalogue"),
     ("design", "", "[analysis] kind = 'design': not yet for model = \"chain\" (it chooses "
                    "a pair's (d, phi, k_c, c_c), not yet a chain's stops); a chain runs kind "
                    "'trajectory' or 'lyapunov' or 'dcrit' or 'bifurcation' or "
-                   "'catalogue' or 'continuation'"),
+                   "'catalogue' or 'basins' or 'stability' or 'continuation'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
                   "curves from a pair's combinations and follows them in (d, phi)"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
