@@ -55,7 +55,10 @@ CHAIN_REFUSALS = {
     "fatal_shock": _PAIR_NAMES,
     "map": ("it predicts a pair's surviving combinations over (d, phi); on a chain kind "
             "\"dcrit\" gives each stop's critical values"),
-    "design": "it chooses a pair's (d, phi, k_c, c_c), not yet a chain's stops",
+    "design": ("it searches a pair's (d, phi) plane of critical distances; a chain's "
+               "region over its stops and phases is not built yet: kind \"dcrit\" gives "
+               "each stop's critical values, kind \"stability\" a point's basin "
+               "stability"),
     "atlas": ("it seeds its curves from a pair's combinations and follows them in "
               "(d, phi); on a chain kind \"dcrit\" gives each stop's critical values"),
 }
