@@ -47,14 +47,12 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
 CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "basins",
-               "stability")
+               "stability", "map")
 _PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
                "combinations (L/R names); a chain's are not named yet")
 CHAIN_REFUSALS = {
     "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
     "fatal_shock": _PAIR_NAMES,
-    "map": ("it predicts a pair's surviving combinations over (d, phi); on a chain kind "
-            "\"dcrit\" gives each stop's critical values"),
     "design": "it chooses a pair's (d, phi, k_c, c_c), not yet a chain's stops",
     "continuation": ("its shooting and events follow a pair's one stop, x1 - x2 - d; on a "
                      "chain kind \"bifurcation\" follows the products along any parameter"),
