@@ -230,7 +230,7 @@ def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: floa
     for axis in allowed:
         if sec.has(axis):
             _check_parameter(sec, axis, axis, values)
-            if axis == "phi":
+            if axis == "phi" or axis.startswith("phi."):  # a chain's body phase too
                 axes[axis] = _values(sec, axis, "pi", math.pi)
             elif axis == "t0":
                 axes[axis] = _values(sec, axis, "T", period)
@@ -295,7 +295,7 @@ def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period
             if axis in panel:
                 raw = panel[axis]
                 try:
-                    if axis == "phi":
+                    if axis == "phi" or axis.startswith("phi."):
                         v = parse_multiple(raw, "pi", math.pi)
                     elif axis == "t0":
                         v = parse_multiple(raw, "T", period)

@@ -47,18 +47,16 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
 CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "basins",
-               "stability", "continuation")
+               "stability", "map", "continuation")
 _PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
                "combinations (L/R names); a chain's are not named yet")
 CHAIN_REFUSALS = {
     "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
     "fatal_shock": _PAIR_NAMES,
-    "map": ("it predicts a pair's surviving combinations over (d, phi); on a chain kind "
-            "\"dcrit\" gives each stop's critical values"),
     "design": ("it searches a pair's (d, phi) plane of critical distances; a chain's "
-               "region over its stops and phases is not built yet: kind \"dcrit\" gives "
-               "each stop's critical values, kind \"stability\" a point's basin "
-               "stability"),
+               "region over its stops and phases is not built yet: kind \"map\" gives "
+               "which products survive over two parameters, kind \"stability\" a "
+               "point's basin stability"),
     "atlas": ("it seeds its curves from a pair's combinations and follows them in "
               "(d, phi); on a chain kind \"dcrit\" gives each stop's critical values"),
 }

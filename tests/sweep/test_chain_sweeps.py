@@ -163,3 +163,65 @@ def test_a_chain_grid_names_its_parameters():
         parse_scene(RANDOM.replace("stop.1.d = [4.0, 5.0]", "d = [4.0, 5.0]"), "s.toml")
     assert "s.toml: [grid] d: unknown key; allowed: F.1, F.2" in str(err.value)
     assert "stop.1.d" in str(err.value) and "\n" not in str(err.value)
+
+
+PAIR_MAP = """\
+[system]
+model = "chain"
+bodies = 2
+k2 = 0.05
+F = 1.5
+w = 1.4
+phi = [0.0, "pi/2"]
+
+[[stop]]
+between = [1, 2]
+d = 4.0
+
+[catalogue]
+grid = 4
+random = 0
+box = {x = [-4.0, 4.0], v = [-4.0, 4.0]}
+
+[analysis]
+kind = "map"
+
+[grid]
+stop.1.d = [2.0, 4.0, 6.5]
+phi.2 = ["pi/2", "pi"]
+
+[initial_conditions]
+kind = "plane"
+ranges = [[-4.0, 4.0], [-4.0, 4.0]]
+resolution = [3, 3]
+"""
+
+
+def test_a_two_body_chain_map_predicts_the_duffing_pairs_counts(tmp_path):
+    """Over (stop.1.d, phi.2) a chain of two Duffing bodies predicts, at every point, the
+    number of the preset pair's combinations whose own critical distance d_crit(phi)
+    lies below d (analysis.critical_distance on the preset); what the starts find
+    without contact never exceeds it."""
+    from softimpact_cli.analysis.catalogue import body_catalogue, body_problem
+    from softimpact_cli.analysis.critical_distance import critical_distances
+    from softimpact_cli.config import IntegratorSettings
+    from softimpact_cli.systems import get_system
+
+    scene = parse_scene(PAIR_MAP)
+    ds = run_sweep(scene, tmp_path / "m.h5", workers=1)
+    preset = get_system("duffing", 2)
+    values = {"c": 0.05, "k1": 1.0, "k2": 0.05, "F": 1.5, "w": 1.4, "d": 4.0, "phi": 0.0,
+              "k_c": 8.0, "c_c": 10.0}
+    left, _ = body_catalogue(body_problem(preset, values, IntegratorSettings()),
+                             np.array(np.meshgrid(np.linspace(-4, 4, 4), np.linspace(-4, 4, 4),
+                                                  indexing="ij")).reshape(2, -1).T)
+    phis = np.array([np.pi / 2, np.pi])
+    d_crit = critical_distances(preset, values, left, phis)["d_crit"].values  # (combo, phi)
+    predicted = ds["predicted_count"].squeeze(drop=True).transpose("stop.1.d", "phi.2").values
+    for i, d in enumerate((2.0, 4.0, 6.5)):
+        for j in range(2):
+            assert predicted[i, j] == int(np.sum(d_crit[:, j] < d))
+    assert predicted.min() < predicted.max()  # the gaps span the critical distances
+    found = ds["found_nonimpacting"].squeeze(drop=True).transpose("stop.1.d", "phi.2").values
+    assert np.all(found <= predicted)
+    assert len(plot.map(ds).axes) == 6  # three panels and their colour bars
