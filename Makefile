@@ -212,16 +212,19 @@ $(LYAPUNOV): $(STAMP)
 # figure 7 as branches in d (grazing at the critical distances, impacting orbits, folds),
 # Ueda's period-doubling cascade in F, figure 14(c)'s impacting orbit in c_c (its
 # subcritical Neimark-Sacker point), and the pair's symmetric orbit at phi = pi in w (two
-# branch points, the asymmetric pair switched onto). Measured for the gallery
-# (docs/gallery.md, 2026-11-27, 2 cores at load 8-11, nice 19): 17 s, 72 s, 87 s, 40 s, 88 s.
+# branch points, the asymmetric pair switched onto), and a two-body chain with a kink, a
+# stop and a wall in a body's phase (an S-shaped impacting branch: grazing, two folds).
+# Measured for the gallery (docs/gallery.md, 2026-11-27, 2 cores at load 8-11, nice 19):
+# 17 s, 72 s, 87 s, 40 s, 88 s, 55 s.
 CONTINUATION := continuation-duffing-fold continuation-fig07 continuation-ueda \
-	continuation-fig14c-ns continuation-pitchfork
+	continuation-fig14c-ns continuation-pitchfork continuation-chain
 continuation: $(CONTINUATION)
 continuation-duffing-fold: configs/continuation/duffing_fold_F.toml
 continuation-fig07: configs/continuation/fig07_duffing_continuation.toml
 continuation-ueda: configs/continuation/ueda_period_doubling_F.toml
 continuation-fig14c-ns: configs/continuation/fig14c_neimark_sacker_c_c.toml
 continuation-pitchfork: configs/continuation/pitchfork_w.toml
+continuation-chain: configs/continuation/chain_hysteresis_phi2.toml
 $(CONTINUATION): $(STAMP)
 	$(SI) sweep $(filter %.toml,$^) -o results/$(subst -,_,$@).h5 --overwrite $(QUICKFLAG)
 	$(SI) plot continuation results/$(subst -,_,$@).h5 -o results/$(subst -,_,$@).png

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
-from math import lcm
 
 import numpy as np
 import xarray as xr
@@ -29,9 +28,10 @@ import xarray as xr
 from ..config import IntegratorSettings
 from ..systems import System
 from ..systems.chain import ChainModel, Kink, chain_system
-from .catalogue import Attractor, body_catalogue, same_cycle
+from .catalogue import Attractor, body_catalogue, joint_orbit
 from .critical_distance import NO_CONTACT_D, TIGHT, zero_of_rate
 from .engine import Problem, flow, record_trajectory
+from .labels import BodyToken, all_shifts, bodies_label
 
 BODY_KEYS = ("m", "c", "k1", "k2", "F", "phi")
 
@@ -78,29 +78,21 @@ class Product:
 
     @property
     def name(self) -> str:
-        """One token per body: ``i:P<period>-<shift>^<number>`` (body 1 without shift)."""
-        tokens = [f"1:P{self.attractors[0].period}^{self.attractors[0].number}"]
-        tokens += [f"{i}:P{a.period}-{s}^{a.number}" for i, (a, s) in
-                   enumerate(zip(self.attractors[1:], self.shifts[1:], strict=True), 2)]
-        return " ".join(tokens)
+        """The n-body name (``labels.bodies_label``): ``L1^1 R1-0^2`` for two bodies,
+        ``B1:P2^1 B2:P1-0^2 B3:P2-1^1`` for three or more; one body: ``L1^1``."""
+        return bodies_label([BodyToken(a.period, a.number, s)
+                             for a, s in zip(self.attractors, self.shifts, strict=True)]).name
 
 
-def products(per_body: list[list[Attractor]], tol: float = 1e-6) -> list[Product]:
-    """Every distinct product of one attractor per body (joint orbits equal up to a time
-    shift of whole periods counted once)."""
-    out: list[Product] = []
-    for chosen in itertools.product(*per_body):
-        periods = [a.period for a in chosen]
-        q = lcm(*periods)
-        for rest in itertools.product(*(range(p) for p in periods[1:])):
-            shifts = (0,) + rest
-            orbit = np.array([np.concatenate([a.points[(s + i) % a.period]
-                                              for a, s in zip(chosen, shifts, strict=True)])
-                              for i in range(q)])
-            if not any(p.orbit.shape == orbit.shape and same_cycle(p.orbit, orbit, tol)
-                       for p in out):
-                out.append(Product(tuple(chosen), shifts, orbit))
-    return out
+def products(per_body) -> list[Product]:
+    """Every product of one attractor per body (``per_body``: each body's attractors) with
+    every canonical shift tuple (``labels.all_shifts``: the joint orbits equal up to a time
+    shift of whole periods counted once), in code order: that of
+    ``catalogue.combination_names`` (the first body's attractors slowest, shifts
+    lexicographic)."""
+    return [Product(tuple(chosen), tuple(s), joint_orbit(chosen, s))
+            for chosen in itertools.product(*per_body)
+            for s in all_shifts([a.period for a in chosen])]
 
 
 def stop_coefficients(system: System, stop_number: int) -> tuple[np.ndarray, float]:

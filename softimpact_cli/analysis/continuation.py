@@ -9,6 +9,9 @@ in the plain Euclidean norm of (y, lam). From a point u_k with unit tangent t_k
 - corrector: Newton on ``G(u) = 0, t_k . (u - u_pred) = 0``, whose matrix ``[J; t_k^T]``
   is regular at regular points and at folds alike (that is why folds are passed, and the
   unstable orbit between two folds is found);
+- corners: where the orbit's section point (its state at t = 0) crosses a stop's contact
+  surface the map has a corner and so has the branch (:func:`section_corner`); with
+  ``cross_corners`` (chains) the step across it is accepted, else the branch ends there;
 - step control: ``h`` grows by GROW after an easy correction (at most EASY Newton steps),
   shrinks by SHRINK after a hard one, and is halved and retried when Newton fails, when
   the tangent turns by more than MAX_TURN radians, the corrector moves the point by more
@@ -37,6 +40,7 @@ MAX_TURN = 0.35  # radians between successive tangents
 MAX_NEWTON = 12
 RESOLVE = 100  # a silent turn is resolved down to RESOLVE * min_step
 MAX_CORRECTION = 0.5  # |corrected - predicted| per unit step: more is a hop to another branch
+MAX_CORNER_CORRECTION = 4.0  # the same across a corner (section_corner): tan 76 degrees
 
 
 @dataclass(frozen=True)
@@ -58,6 +62,9 @@ class Settings:
     # cut the step where the branch turns back in lam with no multiplier through +1 (two
     # folds in one step); off for the atlas's curves, which turn in either parameter freely
     resolve_turns: bool = True
+    # accept a corner of the branch where its section point crosses a contact surface (see
+    # :func:`section_corner`); on for chains, off for the presets (their results stay)
+    cross_corners: bool = False
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -74,23 +81,28 @@ class StepControl:
     tolerance: float = 1e-10
 
     def settings(self, bounds: tuple[float, float], tol: float | None = None,
-                 resolve_turns: bool = True) -> Settings:
+                 resolve_turns: bool = True, cross_corners: bool = False) -> Settings:
         """The ``Settings`` of a branch within ``bounds`` (Newton tolerance ``tol``, else
         ``tolerance``)."""
         return Settings(bounds, self.step, self.min_step, self.max_step, self.max_points,
-                        self.tolerance if tol is None else tol, resolve_turns=resolve_turns)
+                        self.tolerance if tol is None else tol, resolve_turns=resolve_turns,
+                        cross_corners=cross_corners)
 
 
 @dataclass
 class Point:
     """One solution on a branch: u = (y, lam) (n + 1,), the map there, the unit tangent
-    (n + 1,), the arclength step that reached it and the Newton steps it took."""
+    (n + 1,), the arclength step that reached it and the Newton steps it took (and, on a
+    chain, its stops' gaps once computed)."""
 
     u: np.ndarray
     value: MapValue
     tangent: np.ndarray
     step: float = 0.0
     newton: int = 0
+    # a chain's (n_stops,) maxima of each stop's compression along the orbit, once asked
+    # for (continuation_grazing.kernel_gaps)
+    stop_gaps: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def state(self) -> np.ndarray:
@@ -208,11 +220,13 @@ def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 
             turn = np.arccos(np.clip(t_new @ here.tangent, -1.0, 1.0))
             jump = float(np.max(np.abs(u - here.u)))
             moved = float(np.linalg.norm(u - here.u - h * here.tangent))
-            if turn <= MAX_TURN and jump <= max(settings.max_step, 2 * h) and \
-                    moved <= MAX_CORRECTION * h:
+            corner = settings.cross_corners and moved <= MAX_CORNER_CORRECTION * h and \
+                section_corner(orbit_map, here.u, u)
+            if (corner or turn <= MAX_TURN and moved <= MAX_CORRECTION * h) and \
+                    jump <= max(settings.max_step, 2 * h):
                 accepted = Point(u, value, t_new, h, k)
-                if settings.resolve_turns and silent_turn(here, accepted) and \
-                        h > RESOLVE * settings.min_step:
+                if settings.resolve_turns and not corner and silent_turn(here, accepted) \
+                        and h > RESOLVE * settings.min_step:
                     accepted = None  # two folds within one step: resolve them
         if accepted is None:
             h *= 0.5
@@ -243,6 +257,24 @@ def follow(orbit_map: OrbitMap, first: Point, settings: Settings, sign: float = 
             h * SHRINK if accepted.newton >= HARD else h
     leg.end = "max points"
     return leg
+
+
+def section_corner(orbit_map: OrbitMap, a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether the section point (the state at t = 0) crosses a contact surface between
+    the branch points ``a`` and ``b`` ((n + 1,) each, at their own parameter values).
+
+    There the stroboscopic map has a corner: from one side the orbit's contact onset (or
+    release) falls just after t = 0 and the monodromy holds its saltation matrix S first,
+    from the other just before t = T and S comes last (M S^-1 against S M: the same
+    multipliers, another matrix), so the branch of fixed points turns abruptly (a tangent
+    turning by up to ~75 degrees, the corrector landing up to MAX_CORNER_CORRECTION steps
+    off its predictor) and the smooth step control would end it ("step too small")."""
+    sides = []
+    for u in (a, b):
+        surfaces = orbit_map.problem(float(u[-1])).surfaces
+        g = surfaces.A @ u[:-1] + surfaces.b
+        sides.append([g[i] >= 0.0 for i in surfaces.contact_indices])
+    return sides[0] != sides[1]
 
 
 def silent_turn(left: Point, right: Point) -> bool:

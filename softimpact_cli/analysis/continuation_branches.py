@@ -18,7 +18,7 @@ switched onto again.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -94,8 +94,10 @@ def _met(event: Event, meets: tuple[tuple[str, Event], ...]) -> tuple[str, Event
 
 
 def same_event(a: Event, b: Event) -> bool:
-    """Two events of one kind at one point (to MATCH_TOL in state and parameter)."""
-    return a.kind == b.kind and float(np.max(np.abs(a.point.u - b.point.u))) < MATCH_TOL
+    """Two events of one kind (and stop) at one point (to MATCH_TOL in state and
+    parameter)."""
+    return a.kind == b.kind and a.stop == b.stop and \
+        float(np.max(np.abs(a.point.u - b.point.u))) < MATCH_TOL
 
 
 def trace(orbit_map: OrbitMap, first: Point, settings: Settings, name: str,
@@ -223,7 +225,7 @@ def _attach(branch: Branch, event: Event, orbit_map: OrbitMap, first: Point, par
     branch.points.insert(0, Point(event.point.u, orbit_map.evaluate(event.point.state,
                                                                     event.point.parameter),
                                   first.tangent, 0.0, 0))
-    branch.events = [Event(e.kind, e.point, e.after + 1) for e in branch.events]
+    branch.events = [replace(e, after=e.after + 1) for e in branch.events]
     branch.parent = parent
 
 

@@ -3,7 +3,8 @@
 Dimensions: ``point`` (every point of every branch, branch after branch, each in order of
 arclength), ``branch``, ``event``, ``variable`` (the state), ``multiplier`` (n), ``section``
 (a point's p section points), ``body`` (x of each body), and for the brute-force sweeps
-``sweep``, ``sweep_step``, ``sweep_point``.
+``sweep``, ``sweep_step``, ``sweep_point``. A chain's adds ``stop``: each stop's gap along
+the branches (``stop_gap``) and the stop each grazing touches (``event_stop``).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import xarray as xr
 
 from .catalogue import orbit_points
 from .continuation_branches import Branch
+from .continuation_grazing import is_chain, kernel_gaps
 from .shooting import OrbitMap
 
 
@@ -100,8 +102,29 @@ def branch_variables(base: OrbitMap, branches: list[Branch]) -> tuple[dict, dict
     coords = {"point": np.arange(N), "branch": np.arange(len(branches)),
               "event": np.arange(E), "variable": list(system.state_names),
               "multiplier": np.arange(n), "section": np.arange(max_p),
-              "body": ["x1", "x2"] if bodies == 2 else ["x"]}
+              "body": [f"x{i}" for i in range(1, bodies + 1)] if bodies > 1 else ["x"]}
+    if is_chain(system):
+        chain_data, chain_coords = stop_variables(base, branches, points, events)
+        data.update(chain_data)
+        coords.update(chain_coords)
     return data, coords
+
+
+def stop_variables(base: OrbitMap, branches: list[Branch], points: list, events: list
+                   ) -> tuple[dict, dict]:
+    """(data variables, coordinates) a chain adds: each stop's gap at every point of the
+    branches (``points``: (branch index, point)) and the stop of each grazing event."""
+    gaps = np.array([kernel_gaps(base.with_periods(branches[i].periods), p)
+                     for i, p in points])
+    stops = len(base.system.extra["chain"].stops)
+    data = {
+        "stop_gap": (("point", "stop"), gaps.reshape(len(points), stops),
+                     {"long_name": "max over the orbit of each stop's compression (its "
+                                   "gap's grazing test: >= 0 in contact)", "units": "1"}),
+        "event_stop": (("event",), np.array([e.stop for _, e in events], dtype=np.int64),
+                       {"long_name": "the stop a grazing touches (0: another event)"}),
+    }
+    return data, {"stop": np.arange(1, stops + 1)}
 
 
 def sweep_variables(sweeps: list[tuple[str, str, list[dict]]], bodies: int) -> tuple[dict, dict]:

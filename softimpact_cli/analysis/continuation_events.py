@@ -19,7 +19,8 @@ With the Floquet multipliers mu_i of a point (eigenvalues of the monodromy M, n 
   the stop. Signs are compared on the kernels' located maximum; the zero is located on
   the maximum refined by ``critical_distance.locate_maximum`` (root of v1 - v2 on the
   flow, to 1e-12 in time), so the grazing parameter is exact to the integration
-  tolerance, as the critical distances are.
+  tolerance, as the critical distances are. A chain has one such test per stop, its
+  compression's maximum (``continuation_grazing``), and each grazing event names its stop.
 
 Between two consecutive points whose test function differs in sign, the zero is located
 by bisection safeguarded with the Illinois secant step on the arclength step sigma from
@@ -54,6 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .continuation import MAX_CORRECTION, Point, correct, start_point, tangent
+from .continuation_grazing import StopGrazing, kernel_gaps, precise_gap, stop_tests
 from .critical_distance import critical_distance
 from .shooting import OrbitMap
 
@@ -70,12 +72,14 @@ COMPLEX_TOL = 1e-7  # |Im mu| above this: a complex pair (Neimark-Sacker, not ne
 
 @dataclass
 class Event:
-    """A located bifurcation: its kind (EVENT_KINDS), the point, and the index of the
-    branch point before it in the leg it was found on."""
+    """A located bifurcation: its kind (EVENT_KINDS), the point, the index of the
+    branch point before it in the leg it was found on, and on a chain the stop (1-based)
+    a grazing touches (0: not a chain's grazing)."""
 
     kind: str
     point: Point
     after: int
+    stop: int = 0
 
 
 def multiplier_tests(multipliers: np.ndarray) -> np.ndarray:
@@ -96,13 +100,24 @@ def gap(orbit_map: OrbitMap, point: Point, precise: bool = False) -> float:
     return top - float(problem.values["d"])
 
 
-def test_values(orbit_map: OrbitMap, point: Point) -> np.ndarray:
-    """(4,) [psi_LP, psi_PD, psi_NS, psi_G] at a point (psi_G NaN for one body)."""
+def test_values(orbit_map: OrbitMap, point: Point, chain: bool = False) -> np.ndarray:
+    """[psi_LP, psi_PD, psi_NS, psi_G] at a point: (4,) with the pair's psi_G (NaN for one
+    body), or for a ``chain`` (3 + n_stops,) with psi_G of each stop."""
+    tests = multiplier_tests(point.multipliers)
+    if chain:
+        return np.concatenate([tests, kernel_gaps(orbit_map, point)])
     g = gap(orbit_map, point) if orbit_map.system.bodies == 2 else np.nan
-    return np.append(multiplier_tests(point.multipliers), g)
+    return np.append(tests, g)
+
+
+def _grazing(which) -> bool:
+    """Whether test ``which`` is a grazing test (3: the pair's stop; a chain's stop)."""
+    return isinstance(which, StopGrazing) or (not callable(which) and which == 3)
 
 
 def _test(orbit_map: OrbitMap, point: Point, which) -> float:
+    if isinstance(which, StopGrazing):
+        return precise_gap(orbit_map, point, which)
     if callable(which):  # a test function of the caller's (the atlas's codimension two)
         return float(which(point))
     if which == 3:
@@ -124,17 +139,17 @@ def illinois(fm: float, fa: float, fb: float, side: int) -> tuple[bool, float, f
 
 def locate(orbit_map: OrbitMap, left: Point, right: Point, which, tol: float
            ) -> Point | None:
-    """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing, 4 turn, or a
-    callable of a point, floor 1e-12) between two consecutive points of a leg (``right`` =
-    the step ``right.step`` from ``left``)."""
+    """The zero of test function ``which`` (0 LP, 1 PD, 2 NS, 3 grazing, 4 turn, a chain's
+    ``StopGrazing``, or a callable of a point, floor 1e-12) between two consecutive points
+    of a leg (``right`` = the step ``right.step`` from ``left``)."""
     a, b = 0.0, right.step
     fa, fb = _test(orbit_map, left, which), _test(orbit_map, right, which)
     # grazing: the kernel's max and the precise max disagree on the sign change
-    if not callable(which) and which == 3 and np.sign(fa) == np.sign(fb):
+    if _grazing(which) and np.sign(fa) == np.sign(fb):
         return right if abs(fb) < abs(fa) else left
     best = right if abs(fb) < abs(fa) else left
     side = 0
-    floor = 1e-14 if not callable(which) and which < 3 else 1e-12
+    floor = 1e-12 if _grazing(which) or callable(which) or which >= 3 else 1e-14
     for _ in range(MAX_BISECTIONS):
         if b - a <= LOCATE_TOL * max(1.0, right.step):
             break
@@ -176,8 +191,9 @@ def half_period(orbit_map: OrbitMap, point: Point, tol: float) -> Point | None:
     return Point(found.u, value, point.tangent, point.step, found.newton)
 
 
-def classify(which: int, located: Point) -> str | None:
-    """The name of a sign change of test function ``which`` (1 PD, 2 NS, 3 grazing), or
+def classify(which, located: Point) -> str | None:
+    """The name of a sign change of test function ``which`` (1 PD, 2 NS, 3 or a
+    ``StopGrazing``: grazing), or
     None when it is no bifurcation of that kind (an NS test zero at a neutral saddle)."""
     if which == 1:
         return "period doubling"
@@ -286,17 +302,24 @@ def _on_leg(point: Point, left: Point, right: Point) -> Point:
 
 
 def detect(orbit_map: OrbitMap, left: Point, right: Point, tol: float) -> list[Event]:
-    """Every event between two consecutive points, located, in the order of arclength."""
-    before, after = test_values(orbit_map, left), test_values(orbit_map, right)
+    """Every event between two consecutive points, located, in the order of arclength
+    (on a chain a grazing of each stop, its stop named)."""
+    stops = stop_tests(orbit_map, left.parameter)
+    chain = bool(stops)
+    before = test_values(orbit_map, left, chain)
+    after = test_values(orbit_map, right, chain)
     events = turn_events(orbit_map, left, right, np.sign(before[0]) * np.sign(after[0]) < 0,
                          tol)
-    for which in (1, 2, 3):
-        if not (np.isfinite(before[which]) and np.isfinite(after[which])):
+    # (column of the test values, test): the pair's grazing is column 3, a chain's stop s
+    # (its StopGrazing) column 3 + s - 1
+    tests = [(1, 1), (2, 2)] + ([(3 + t.surface, t) for t in stops] if chain else [(3, 3)])
+    for column, which in tests:
+        if not (np.isfinite(before[column]) and np.isfinite(after[column])):
             continue
-        if which == 3:
-            changed = (before[which] >= 0.0) != (after[which] >= 0.0)
+        if _grazing(which):
+            changed = (before[column] >= 0.0) != (after[column] >= 0.0)
         else:
-            changed = np.sign(before[which]) * np.sign(after[which]) < 0
+            changed = np.sign(before[column]) * np.sign(after[column]) < 0
         if not changed:
             continue
         located = locate(orbit_map, left, right, which, tol)
@@ -304,7 +327,8 @@ def detect(orbit_map: OrbitMap, left: Point, right: Point, tol: float) -> list[E
             continue
         kind = classify(which, located)
         if kind is not None:
-            events.append(Event(kind, located, -1))
+            stop = which.stop if isinstance(which, StopGrazing) else 0
+            events.append(Event(kind, located, -1, stop))
     events.sort(key=lambda e: e.point.step)
     return events
 

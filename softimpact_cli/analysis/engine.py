@@ -218,12 +218,19 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
     )
 
 
-def flow(problem: Problem, state, t0: float, t1: float) -> tuple[int, np.ndarray, float]:
-    """(status, state at t1, max of the contact function on [t0, t1]) from ``state`` at t0."""
+def flow(problem: Problem, state, t0: float, t1: float, contacts: int | None = None
+         ) -> tuple[int, np.ndarray, float]:
+    """(status, state at t1, max of the contact function on [t0, t1]) from ``state`` at t0.
+
+    contacts : the bit mask of the surfaces whose running maximum is returned (default the
+        system's contact surfaces, all of a chain's stops at once; ``1 << s``: surface s
+        alone). It changes nothing else: the integration watches every surface.
+    """
     y0 = np.array(state, dtype=np.float64)  # a writable copy: one kernel signature
+    A, b, relevance, mask = problem.kernel_args()
+    surfaces = (A, b, relevance, mask if contacts is None else int(contacts))
     status, y, max_g, _ = orbit.flow(problem.advance, problem.system.rhs, problem.params, y0,
-                                     float(t0), float(t1), problem.kernel_args(),
-                                     problem.options())
+                                     float(t0), float(t1), surfaces, problem.options())
     return int(status), y, float(max_g)
 
 

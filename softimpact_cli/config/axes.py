@@ -34,10 +34,18 @@ def axis_units(axis: str) -> str:
     return units.get(axis, "1")
 
 
+def is_chain(system: System) -> bool:
+    """Whether ``system`` is a chain (``model = "chain"``): its parameters have the
+    chain's names (``w``, ``F.2``, ``stop.1.d``...) and no pair's coupling."""
+    return "chain" in system.extra
+
+
 def parameter_axes(system: System) -> tuple[str, ...]:
     """The model parameters besides the coupling that can be grid axes: the body's (``c,
     k1, k2, F, w`` and ``d1`` for bilinear) and, for a pair, the stop laws' own keys
-    (``exponent``), in the model's order."""
+    (``exponent``), in the model's order. A chain: every parameter by its name."""
+    if is_chain(system):
+        return system.parameter_names
     names = tuple(p.name for p in system.parameters if p.name not in COUPLING_AXES)
     return names + (tuple(LAW_KEYS) if system.bodies == 2 else ())
 
@@ -45,13 +53,16 @@ def parameter_axes(system: System) -> tuple[str, ...]:
 def allowed_axes(system: System) -> tuple[str, ...]:
     """Every [grid] axis of a sweep of ``system``: its parameter axes, the coupling (a
     pair), and t0."""
-    return (parameter_axes(system) + (COUPLING_AXES if system.bodies == 2 else ())
-            + ("t0",))
+    coupling = system.bodies == 2 and not is_chain(system)
+    return parameter_axes(system) + (COUPLING_AXES if coupling else ()) + ("t0",)
 
 
 def catalogue_axes(system: System) -> tuple[str, ...]:
     """The parameters a sweep's catalogue depends on: the body's (its one-body search)
-    and, for a pair, phi (the right body's phase). Not d, k_c, c_c or the law's keys."""
+    and, for a pair, phi (the right body's phase). Not d, k_c, c_c or the law's keys.
+    A chain: every parameter but its stops' (``stop.s.*``)."""
+    if is_chain(system):
+        return tuple(a for a in system.parameter_names if not a.startswith("stop."))
     body = tuple(p.name for p in system.parameters if p.name not in COUPLING_AXES)
     return body + (("phi",) if system.bodies == 2 else ())
 

@@ -209,23 +209,28 @@ def _values(sec: Section, key: str, symbol: str | None, unit: float) -> tuple[fl
 
 
 def read_grid(source: str, doc: dict, values: Mapping, bodies: int, period: float,
-              check_value, parameters: tuple[str, ...] = ()) -> Grid:
+              check_value, parameters: tuple[str, ...] = (), chain: bool = False) -> Grid:
     """[grid] for a sweep; ``check_value(axis, value)`` returns a problem or None.
 
     ``parameters``: the model parameters the kind can sweep besides the coupling and t0
     (``config.axes.parameter_axes``; empty where it sweeps those only). A parameter absent
-    from ``values`` (the exponent of a law without one) is refused.
+    from ``values`` (the exponent of a law without one) is refused. ``chain``: a chain's
+    grid, its axes named as the chain names its parameters (``stop.1.d = [..]``, TOML
+    dotted or quoted: :func:`flat_grid`), no pair's coupling.
     """
-    sec = Section(source, "grid", doc.get("grid", {}))
-    check_bodies(bodies, "[grid] (coupling axes of one pair)")
-    allowed = tuple(parameters) + (COUPLING_AXES if bodies == 2 else ()) + ("t0",)
+    table = doc.get("grid", {})
+    sec = Section(source, "grid", flat_grid(table) if chain else table)
+    if not chain:
+        check_bodies(bodies, "[grid] (coupling axes of one pair)")
+    coupling = COUPLING_AXES if bodies == 2 and not chain else ()
+    allowed = tuple(parameters) + coupling + ("t0",)
     if sec.has("panels"):
         return _read_panels(sec, values, allowed, period, check_value)
     axes: dict[str, tuple[float, ...]] = {}
     for axis in allowed:
         if sec.has(axis):
             _check_parameter(sec, axis, axis, values)
-            if axis == "phi":
+            if axis == "phi" or axis.startswith("phi."):  # a chain's body phase too
                 axes[axis] = _values(sec, axis, "pi", math.pi)
             elif axis == "t0":
                 axes[axis] = _values(sec, axis, "T", period)
@@ -290,7 +295,7 @@ def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period
             if axis in panel:
                 raw = panel[axis]
                 try:
-                    if axis == "phi":
+                    if axis == "phi" or axis.startswith("phi."):
                         v = parse_multiple(raw, "pi", math.pi)
                     elif axis == "t0":
                         v = parse_multiple(raw, "T", period)
@@ -369,10 +374,14 @@ def read_initial_conditions(source: str, doc: dict, names: tuple[str, ...], peri
                 raise sec.fail("t0", f"{problem}, got {t0!r}")
     if kind == "plane":
         axes = sec.raw("axes", list(names[::2][:2]) if len(names) == 4 else list(names))
+        if isinstance(axes, list):  # a state variable by its index (0: x1, 1: v1, ...)
+            axes = [names[a] if isinstance(a, int) and not isinstance(a, bool)
+                    and 0 <= a < len(names) else a for a in axes]
         if (not isinstance(axes, list) or len(axes) != 2 or any(a not in names for a in axes)
                 or axes[0] == axes[1]):
             raise sec.fail("axes", f"must be two different state variables out of "
-                                   f"{', '.join(names)}, got {axes!r}")
+                                   f"{', '.join(names)} (or their indices 0 to "
+                                   f"{len(names) - 1}), got {axes!r}")
         ranges = sec.raw("ranges")
         if (not isinstance(ranges, list) or len(ranges) != 2
                 or any(not isinstance(r, list) or len(r) != 2 for r in ranges)):

@@ -60,7 +60,7 @@ def _read_chain(sec, ctx) -> BifurcationAnalysis:
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
         raise sec.fail("branches", "must be a list of product names like "
-                                   f"'1:P1^1 2:P1-0^2 3:P1-0^1', got {raw!r}")
+                                   f"'B1:P1^1 B2:P1-0^2 B3:P1-0^1', got {raw!r}")
     return BifurcationAnalysis("bifurcation", start, stop, step, tuple(raw), parameter)
 
 

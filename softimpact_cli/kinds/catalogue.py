@@ -1,4 +1,6 @@
-"""[analysis] kind = "catalogue": the attractors of one body and the pair's combinations."""
+"""[analysis] kind = "catalogue": the attractors of one body and the pair's combinations; on a
+chain, each body's attractors, their products and which survive the stops
+(``analysis.chain_catalogue``)."""
 
 from __future__ import annotations
 
@@ -7,6 +9,8 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from ..analysis.catalogue import catalogue_dataset, sample_states
+from ..analysis.chain_catalogue import ChainCatalogue, chain_catalogue_dataset
+from ..config.chain_scene import CHAIN
 from ..config.limits import MAX_SEED
 from ..config.reader import positive
 from ..config.sweep import read_box
@@ -53,14 +57,21 @@ def read(sec, ctx) -> CatalogueAnalysis:
 def run(scene, progress=None, **_):
     a = scene.analysis
     states = sample_states(a.box, a.grid, a.random, a.seed)
-    tick = progress(len(states)) if progress else None
+    searches = scene.system.bodies if scene.system.model == CHAIN else 1
+    tick = progress(searches * len(states)) if progress else None
     cat = build_catalogue(scene.system, dict(scene.values), scene.integrator, states, a.t0,
                           a.match_tol, tick)
+    if isinstance(cat, ChainCatalogue):
+        return chain_catalogue_dataset(cat, scene.system)
     return catalogue_dataset(cat, scene.system, scene.integrator)
 
 
 def plan(scene, workers=None, chunk_size=None) -> str:
     a = scene.analysis
+    if scene.system.model == CHAIN:
+        return (f"catalogue: each of the {scene.system.bodies} bodies searched alone from "
+                f"{a.grid} x {a.grid} grid + {a.random} random initial conditions at t0 = "
+                f"{a.t0:g}; their products, each stop's critical values")
     return (f"catalogue: {a.grid} x {a.grid} grid + {a.random} random initial conditions of "
             f"one body at t0 = {a.t0:g}")
 

@@ -1,11 +1,17 @@
 """[analysis] kind = "continuation": branches of periodic orbits, stable and unstable,
 followed in one parameter by pseudo-arclength continuation, with folds, branch points,
-period doublings, Neimark-Sacker points and grazing located (``analysis/continuation*.py``)."""
+period doublings, Neimark-Sacker points and grazing located (``analysis/continuation*.py``).
+
+On a chain (``model = "chain"``) the parameter is any of the chain's by its name (``w``,
+``F.2``, ``stop.1.d``, ``phi.3``...), start = "catalogue" follows the chain catalogue's
+products that no stop touches (``branches`` names any product) and start = "state" the
+orbit a trajectory reaches, impacting or not; grazing is located for each stop."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from ..analysis.catalogue import sample_states
 from ..analysis.continuation import StepControl
 from ..analysis.continuation_branches import continue_starts
 from ..analysis.continuation_dataset import continuation_dataset
@@ -13,10 +19,11 @@ from ..analysis.continuation_sweep import sweeps
 from ..analysis.engine import Problem, classify_state
 from ..analysis.shooting import OrbitMap
 from ..config.axes import allowed_axes
+from ..config.chain_scene import CHAIN
 from ..config.reader import ConfigError, positive
 from ..kernels.codes import CONVERGED
 from ..report.continuation import continuation_info, format_continuation
-from ..store.catalogues import scene_catalogue
+from ..store.catalogues import build_catalogue, scene_catalogue
 from .base import AnalysisKind, PlotSpec, Sections, read_start
 
 STARTS = ("catalogue", "state")
@@ -28,8 +35,8 @@ MAX_POINTS = 100_000
 class ContinuationAnalysis(StepControl):
     """[analysis] kind = "continuation".
 
-    parameter : the continued parameter (d, phi, k_c, c_c for a pair; F, w always); it
-        starts at the scene's value, which must lie in [low, high]
+    parameter : the continued parameter (d, phi, k_c, c_c for a pair; F, w always; any of
+        a chain's by name); it starts at the scene's value, which must lie in [low, high]
     start : "catalogue" (every attractor or combination of the [catalogue] search, or
         those named in ``branches``) or "state" (the periodic orbit a trajectory from
         ``state`` at t = 0 converges to)
@@ -53,12 +60,21 @@ class ContinuationAnalysis(StepControl):
 
 
 def read(sec, ctx) -> ContinuationAnalysis:
-    # any model parameter the scene has (config.axes: the [grid] axes but t0)
-    allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
+    chain = ctx.system.model == CHAIN
+    if chain:  # any of the chain's parameters by its name
+        allowed = tuple(p.name for p in ctx.system.parameters)
+    else:  # any model parameter the scene has (config.axes: the [grid] axes but t0)
+        allowed = tuple(a for a in allowed_axes(ctx.system) if a != "t0" and a in ctx.values)
     parameter = sec.choice("parameter", None, allowed)
     low, high = sec.number("low", None), sec.number("high", None)
     if not low < high:
         raise sec.fail("high", f"must be > low ({low!r}), got {high!r}")
+    if chain:
+        checked = {p.name: p for p in ctx.system.parameters}[parameter]
+        for key, v in (("low", low), ("high", high)):
+            problem = checked.check(v)
+            if problem:
+                raise sec.fail(key, f"{problem} (a value of {parameter}), got {v!r}")
     value = float(ctx.values[parameter])
     if not low <= value <= high:
         raise sec.fail("low", f"the branch starts at the scene's {parameter} = {value!r}, "
@@ -66,8 +82,9 @@ def read(sec, ctx) -> ContinuationAnalysis:
     start, state = read_start(sec, ctx.system, STARTS, at=" at t = 0")
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
-        raise sec.fail("branches", f"must be a list of catalogue names like 'L1^1' or "
-                                   f"'L1^1 R1-0^2', got {raw!r}")
+        example = "product names like 'B1:P1^1 B2:P1-0^2 B3:P1-0^1'" if chain else \
+            "catalogue names like 'L1^1' or 'L1^1 R1-0^2'"
+        raise sec.fail("branches", f"must be a list of {example}, got {raw!r}")
     if raw and start != "catalogue":
         raise sec.fail("branches", "only with start = 'catalogue'")
     step = sec.number("step", 0.02, positive)
@@ -116,6 +133,8 @@ def starts(scene) -> list[tuple[str, object, int]]:
                               f"closer to one or use start = 'catalogue'")
         return [("orbit from state", cls.orbit[-1], cls.period)]
 
+    if scene.system.model == CHAIN:
+        return chain_starts(scene)
     cat = scene_catalogue(scene)
     for name in a.branches:
         if name not in cat.names:
@@ -126,13 +145,36 @@ def starts(scene) -> list[tuple[str, object, int]]:
             if not a.branches or name in a.branches]
 
 
+def chain_starts(scene) -> list[tuple[str, object, int]]:
+    """A chain's catalogue starts (``analysis/chain_catalogue.py``, each body searched from
+    [catalogue]): the products of its bodies' attractors that no stop touches at the
+    scene's values, or the products named in ``branches`` (any of them)."""
+    a, c = scene.analysis, scene.catalogue
+    cat = build_catalogue(scene.system, dict(scene.values), scene.integrator,
+                          sample_states(c.box, c.grid, c.random, c.seed), 0.0, c.match_tol)
+    for name in a.branches:
+        if name not in cat.names:
+            raise ConfigError(f"{scene.source}: [analysis] branches: {name!r} is not a "
+                              f"product of the chain's catalogue ({', '.join(cat.names)})")
+    chosen = [p for p, alive in zip(cat.products, cat.survives, strict=True)
+              if (p.name in a.branches if a.branches else alive)]
+    if not chosen:
+        raise ConfigError(f"{scene.source}: [catalogue]: no product of the bodies' attractors "
+                          f"is apart from every stop at the scene's values (products: "
+                          f"{', '.join(cat.names) or 'none'}); name one in [analysis] "
+                          "branches or start = 'state'")
+    return [(p.name, p.orbit[0], p.orbit.shape[0]) for p in chosen]
+
+
 def run(scene, progress=None, **_):
     a = scene.analysis
     values = dict(scene.values)
     lam0 = float(values[a.parameter])
     chosen = starts(scene)
     base = OrbitMap(scene.system, values, a.parameter, 1)
-    settings = a.settings((a.low, a.high))
+    # a chain's branches cross the corners where their section point crosses a stop's
+    # surface; the presets' stop there as they did (their results do not move)
+    settings = a.settings((a.low, a.high), cross_corners=scene.system.model == CHAIN)
     tick = progress(len(chosen) * (2 if a.brute_force_step else 1)) if progress else None
     branches, fates = continue_starts(base, [(n, s, p) for n, s, p in chosen], lam0, settings,
                                       a.switch_depth, tick)
@@ -148,7 +190,8 @@ def run(scene, progress=None, **_):
         if tick:
             tick(len(chosen))
     ds = continuation_dataset(base, branches, fates, brute, lam0, (a.low, a.high))
-    if a.start == "catalogue":  # its order gives each solution the colour of the basins
+    if a.start == "catalogue" and scene.system.model != CHAIN:
+        # its order gives each solution the colour of the basins
         ds.attrs["catalogue_names"] = list(scene_catalogue(scene).names)
     return ds
 
@@ -167,10 +210,12 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 # what each [analysis] key means (the scene-key reference)
 KEYS = {
-    "parameter": "the continued parameter (its value in the scene is where the branches start)",
+    "parameter": "the continued parameter (its value in the scene is where the branches "
+                 "start; on a chain any of its parameters by name: w, F.2, stop.1.d, phi.3)",
     "low": "the lower end of the continued range",
     "high": "the upper end",
-    "start": '"catalogue" (every catalogue orbit, or branches) or "state" (Newton from state)',
+    "start": '"catalogue" (every catalogue orbit, or branches; on a chain its non-impacting '
+             'products) or "state" (Newton from state)',
     "state": 'start = "state": a point near the orbit at t = 0: [x1, v1, x2, v2] ([x, v] for one '
              "body)",
     "branches": 'catalogue names of the orbits to follow, like "L1^1" or "L1^1 R1-0^2" (default: '

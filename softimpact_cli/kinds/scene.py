@@ -46,20 +46,19 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
-CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation")
+CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "basins",
+               "stability", "map", "continuation")
 _PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
                "combinations (L/R names); a chain's are not named yet")
 CHAIN_REFUSALS = {
-    "catalogue": _PAIR_NAMES, "basins": _PAIR_NAMES, "stability": _PAIR_NAMES,
     "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
     "fatal_shock": _PAIR_NAMES,
-    "map": ("it predicts a pair's surviving combinations over (d, phi); on a chain kind "
-            "\"dcrit\" gives each stop's critical values"),
-    "design": "it chooses a pair's (d, phi, k_c, c_c), not yet a chain's stops",
-    "continuation": ("its shooting and events follow a pair's one stop, x1 - x2 - d; on a "
-                     "chain kind \"bifurcation\" follows the products along any parameter"),
-    "atlas": ("it seeds its curves from the catalogue's orbits, and a chain has no "
-              "catalogue yet; on a chain kind \"dcrit\" gives each stop's critical values"),
+    "design": ("it searches a pair's (d, phi) plane of critical distances; a chain's "
+               "region over its stops and phases is not built yet: kind \"map\" gives "
+               "which products survive over two parameters, kind \"stability\" a "
+               "point's basin stability"),
+    "atlas": ("it seeds its curves from a pair's combinations and follows them in "
+              "(d, phi); on a chain kind \"dcrit\" gives each stop's critical values"),
 }
 
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, replace
 
-from ..analysis.maps import add_map_counts
-from ..config.axes import GRID_AXES, catalogue_axes, every_axis, parameter_axes
+from ..analysis.maps import add_chain_map_counts, add_map_counts
+from ..config.axes import GRID_AXES, catalogue_axes, every_axis, is_chain, parameter_axes
 from ..config.limits import MAX_TRAJECTORIES
 from ..config.reader import ConfigError, positive
 from ..config.scene import thin
@@ -57,7 +57,7 @@ def _reader(kind: str, settings: type[SweepSettings] = SweepAnalysis):
 def sections(analysis, ctx) -> Sections:
     source, doc = ctx.source, ctx.doc
     grid = read_grid(source, doc, ctx.values, ctx.system.bodies, ctx.period, ctx.check_axis,
-                     parameter_axes(ctx.system))
+                     parameter_axes(ctx.system), chain=is_chain(ctx.system))
     initial = read_initial_conditions(source, doc, ctx.system.state_names, ctx.period,
                                       "t0" in grid.swept, "w" in grid.swept)
     total = grid.size * initial.count
@@ -92,7 +92,11 @@ def stability_summary(ds) -> dict:
 
 def map_counts(ds, scene, catalogue):
     """The map's predicted and found numbers of coexisting solutions at each point (with
-    each point's own attractors when the grid sweeps body parameters)."""
+    each point's own attractors when the grid sweeps body parameters; a chain's: the
+    products each point's stops leave, :func:`add_chain_map_counts`)."""
+    if is_chain(scene.system):  # the searches come back from the catalogue cache
+        return add_chain_map_counts(ds, scene.system, dict(scene.values),
+                                    prepare_catalogues(scene)[0], grid_dims(ds))
     body = [a for a in scene.grid.parameters if a in catalogue_axes(scene.system)]
     lefts = None
     if body:  # the searches come back from the catalogue cache

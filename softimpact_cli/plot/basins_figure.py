@@ -83,8 +83,11 @@ def figure_title(ds, varying: list[str], shape: tuple[int, int], n_panels: int) 
     variables = [str(v) for v in ds["variable"].values]
     fixed = ds.attrs.get("plane_fixed") or ", ".join(
         f"${AXIS_SYMBOLS.get(v, v)} = 0$" for v in variables if v not in (a0, a1))
-    pair = int(ds.attrs.get("bodies", 2)) == 2
-    head = (f"{ds.attrs.get('model')} {'pair' if pair else 'body'}: basins on "
+    bodies = int(ds.attrs.get("bodies", 2))
+    chain = ds.attrs.get("model") == "chain"
+    pair = bodies == 2 and not chain
+    what = f"of {bodies} bodies" if chain else "pair" if pair else "body"
+    head = (f"{ds.attrs.get('model')} {what}: basins on "
             f"$({AXIS_SYMBOLS.get(a0, a0)}, {AXIS_SYMBOLS.get(a1, a1)})$"
             + (f", {fixed}" if fixed else "")
             + f"; {shape[0]} x {shape[1]} initial conditions"

@@ -57,6 +57,38 @@ def _catalogue_panels(ax, n_combos: int):
                         for n in range(n_combos)]
 
 
+BODY_STYLES = (("tab:blue", "o"), ("tab:red", "s"), ("tab:green", "^"), ("tab:purple", "v"),
+               ("tab:orange", "D"), ("tab:brown", "P"), ("tab:pink", "X"), ("tab:olive", "*"))
+
+
+def _body_curves(ds, n: int, spp: int):
+    """Per body of combination ``n``: (x(t) over its joint period, ``spp`` samples per
+    period; its section displacements). A pair's bodies are the left attractor and the
+    right body's; a chain's (``combination_attractor``), each body's own attractor."""
+    q = int(ds["combination_period"].values[n])
+    idx = np.arange(q * spp)
+    orbit = ds["combination_orbit"].values[n, :q]
+    if "combination_attractor" in ds:  # a chain: (body, number) -> its attractor row
+        rows = {(int(b), int(k)): i for i, (b, k) in enumerate(zip(
+            ds["attractor_body"].values, ds["attractor_number"].values, strict=True))}
+        out = []
+        for b, (number, s) in enumerate(zip(ds["combination_attractor"].values[n],
+                                            ds["combination_shift"].values[n], strict=True)):
+            i = rows[(b + 1, int(number))]
+            p = int(ds["attractor_period"].values[i])
+            x = ds["attractor_curve"].values[i, (idx + int(s) * spp) % (p * spp), 0]
+            out.append((x, orbit[:, 2 * b]))
+        return out
+    i_l = list(ds["attractor"].values).index(int(ds["combination_left"].values[n]))
+    i_r = list(ds["attractor"].values).index(int(ds["combination_right"].values[n]))
+    s = int(ds["combination_shift"].values[n])
+    pl = int(ds["attractor_period"].values[i_l])
+    pr = int(ds["attractor_period"].values[i_r])
+    x1 = ds["attractor_curve"].values[i_l, idx % (pl * spp), 0]
+    x2 = ds["right_curve"].values[i_r, (idx + s * spp) % (pr * spp), 0]
+    return [(x1, orbit[:, 0]), (x2, orbit[:, 2])]
+
+
 def draw_catalogue(ds, ax=None):
     """Left: attractors on (x, x') with section points. Right: one panel per combination,
     x1(t) and x2(t) over the joint period, section times marked. Returns the Figure.
@@ -91,21 +123,14 @@ def draw_catalogue(ds, ax=None):
     T = float(ds.attrs["forcing_period"])
     for n, cname in enumerate(combos):
         cax = combo_axes[n]
-        i_l = list(ds["attractor"].values).index(int(ds["combination_left"].values[n]))
-        i_r = list(ds["attractor"].values).index(int(ds["combination_right"].values[n]))
-        s = int(ds["combination_shift"].values[n])
         q = int(ds["combination_period"].values[n])
-        pl = int(ds["attractor_period"].values[i_l])
-        pr = int(ds["attractor_period"].values[i_r])
-        idx = np.arange(q * spp)
-        x1 = ds["attractor_curve"].values[i_l, idx % (pl * spp), 0]
-        x2 = ds["right_curve"].values[i_r, (idx + s * spp) % (pr * spp), 0]
-        t = idx / spp
-        cax.plot(t, x1, color="tab:blue", lw=1, label="$x_1$")
-        cax.plot(t, x2, color="tab:red", lw=1, label="$x_2$")
-        orbit = ds["combination_orbit"].values[n, :q]
-        cax.plot(np.arange(q), orbit[:, 0], "o", ms=3, color="tab:blue")
-        cax.plot(np.arange(q), orbit[:, 2], "s", ms=3, color="tab:red")
+        t = np.arange(q * spp) / spp
+        curves = _body_curves(ds, n, spp)
+        styles = [BODY_STYLES[b % len(BODY_STYLES)] for b in range(len(curves))]
+        for b, ((x, _), (colour, _)) in enumerate(zip(curves, styles, strict=True)):
+            cax.plot(t, x, color=colour, lw=1, label=f"$x_{{{b + 1}}}$")
+        for (_, orbit_x), (colour, marker) in zip(curves, styles, strict=True):
+            cax.plot(np.arange(q), orbit_x, marker, ms=3, color=colour)
         cax.set_title(latex_of(cname), fontsize=11)
         for spine in cax.spines.values():  # the label's colour, as in the basin figures
             spine.set_edgecolor(colour_of(cname, combos))

@@ -192,7 +192,10 @@ def panel_letter(ax, k: int, fontsize: int = 11) -> None:
 
 
 def parameter_text(ds, exclude=()) -> str:
-    """The result's parameters as TeX text (phi as a multiple of pi), without ``exclude``."""
+    """The result's parameters as TeX text (phi as a multiple of pi), without ``exclude``.
+    A chain's (``stop.1.k_c``...): plain ``name=value``, CHAIN_PARAMETERS_PER_LINE a line."""
+    if ds.attrs.get("model") == "chain":
+        return _chain_parameter_text(ds, exclude)
     parts = []
     law = None
     for item in str(ds.attrs.get("parameters", "")).split(", "):
@@ -212,6 +215,23 @@ def parameter_text(ds, exclude=()) -> str:
     if law and law != "paper":
         parts.append(f"contact law: {law}")
     return ", ".join(parts)
+
+
+CHAIN_PARAMETERS_PER_LINE = 8
+
+
+def _chain_parameter_text(ds, exclude=()) -> str:
+    """A chain's parameters, plain text (its names are no TeX), several lines."""
+    items = []
+    for item in str(ds.attrs.get("parameters", "")).split(", "):
+        key, _, value = item.partition("=")
+        if key and key not in exclude:
+            try:
+                items.append(f"{key}={float(value):.6g}")
+            except ValueError:
+                items.append(item)
+    step = CHAIN_PARAMETERS_PER_LINE
+    return ",\n".join(", ".join(items[i: i + step]) for i in range(0, len(items), step))
 
 
 def pi_ticks(axis, lo: float, hi: float, max_ticks: int = 9) -> None:

@@ -131,13 +131,16 @@ def draw_continuation(ds, ax=None):
                 panels[-1].plot(lam[part][a:z], mod[part, m][a:z], style, color=colour,
                                 lw=1.0, zorder=3)
         panels[0].plot([], [], "-", color=colour, label=branch_tex(branch))
+    # a chain's grazing names its stop (G2: stop 2 grazed)
+    stops = ds["event_stop"].values if "event_stop" in ds else np.zeros(ds.sizes["event"])
     events = [(float(ds["event_parameter"].values[e]), str(ds["event_kind"].values[e]),
-               ds["event_state"].values[e]) for e in range(ds.sizes["event"])]
+               ds["event_state"].values[e], int(stops[e])) for e in range(ds.sizes["event"])]
     for j, ax_ in enumerate(panels[:-1]):
-        points = [(x, float(state[2 * j]), kind) for x, kind, state in events]
-        for x, y, kind in points:
-            ax_.plot(x, y, MARKERS.get(kind, "*"), mfc="white", mec="black", ms=7, zorder=5)
-        _label_events(ax_, points)
+        for x, kind, state, _ in events:
+            ax_.plot(x, float(state[2 * j]), MARKERS.get(kind, "*"), mfc="white", mec="black",
+                     ms=7, zorder=5)
+        _label_events(ax_, [(x, float(state[2 * j]), f"{SHORT[kind]}{stop}" if stop else kind)
+                            for x, kind, state, stop in events])
     panels[0].plot([], [], "--", color="0.3", label="unstable")
     if impacting.any():
         panels[0].plot([], [], "-", color="0.3", lw=2.2, label="impacting")

@@ -26,7 +26,10 @@ def draw_map(ds, ax=None):
     3 Axes in that order, or a Figure; see ``plot``); returns the matplotlib Figure."""
     import matplotlib
 
-    swept = [a for a in GRID_AXES if ds.sizes.get(a, 1) > 1]
+    chain = ds.attrs.get("model") == "chain"
+    # a chain's axes are its parameters by name (grid_parameters), a preset's GRID_AXES
+    axes = attribute_list(ds.attrs, "grid_parameters") if chain else GRID_AXES
+    swept = [a for a in axes if ds.sizes.get(a, 1) > 1]
     if len(swept) != 2:
         raise ValueError(f"a map needs exactly two swept axes, got {swept or 'none'}")
     ax_x, ax_y = swept
@@ -41,7 +44,8 @@ def draw_map(ds, ax=None):
     top = int(max(pred.max(), found.max(), 1))
     fig, axs = place_panels(ax, (1, 3), [(0, 0), (0, 1), (0, 2)], figsize=(15, 5.0))
     cmap = matplotlib.colormaps["viridis"].resampled(top + 1)
-    panels = ((pred, "predicted (non-impacting, $d_{crit} < d$)"),
+    rule = "no stop reached" if chain else "$d_{crit} < d$"
+    panels = ((pred, f"predicted (non-impacting, {rule})"),
               (found, "found (all periodic attractors)"))
     for k, (ax, (data, title)) in enumerate(zip(axs[:2], panels, strict=True)):
         im = ax.imshow(data, origin="lower", aspect="auto", extent=extent, cmap=cmap,
@@ -59,8 +63,8 @@ def draw_map(ds, ax=None):
     if not np.any(diff):
         _say_empty(axs[2], ALL_ZERO[2])
     for k, ax in enumerate(axs):
-        ax.set_xlabel(f"${SYMBOLS[ax_x]}$")
-        ax.set_ylabel(f"${SYMBOLS[ax_y]}$")
+        ax.set_xlabel(f"${SYMBOLS[ax_x]}$" if ax_x in SYMBOLS else ax_x)
+        ax.set_ylabel(f"${SYMBOLS[ax_y]}$" if ax_y in SYMBOLS else ax_y)
         for name, axis, (lo, hi) in ((ax_x, ax.xaxis, extent[:2]), (ax_y, ax.yaxis,
                                                                      extent[2:])):
             if name == "phi":
@@ -68,7 +72,8 @@ def draw_map(ds, ax=None):
         panel_letter(ax, k)
     kind = "random " if ds.attrs.get("ic_kind") == "random" else ""
     n = int(np.prod([ds.sizes[d] for d in attribute_list(ds.attrs, "ic_dims")]))
-    fig.suptitle(f"{ds.attrs.get('model')} pair on a {len(x)} x {len(y)} grid, {n} {kind}"
+    what = f"of {ds.attrs.get('bodies')} bodies" if chain else "pair"
+    fig.suptitle(f"{ds.attrs.get('model')} {what} on a {len(x)} x {len(y)} grid, {n} {kind}"
                  f"initial conditions per point, {start_text(ds)}\n"
                  + parameter_text(ds, exclude=swept), fontsize=9)
     return root_figure(fig)

@@ -61,7 +61,9 @@ def draw_stability(ds, bs, against: str, ax=None, entropy: bool = False):
         pi_ticks(ax.xaxis, float(xs.min()), float(xs.max()))
     t0_text = "" if against == "t0" else f"; {start_text(ds)}"
     swept = set(attribute_list(ds.attrs, "grid_swept")) | {against}
-    ax.set_title(f"{ds.attrs.get('model')} pair, n = {bs.attrs['n']} samples per point, "
+    what = (f"of {ds.attrs.get('bodies')} bodies" if ds.attrs.get("model") == "chain"
+            else "pair")
+    ax.set_title(f"{ds.attrs.get('model')} {what}, n = {bs.attrs['n']} samples per point, "
                  f"95% Wilson bands{t0_text}\n{parameter_text(ds, exclude=swept)}"
                  + (f"\nnot drawn: {len(never)} catalogue solution"
                     f"{'s' if len(never) > 1 else ''} that no sample reached"

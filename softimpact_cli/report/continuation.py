@@ -50,6 +50,8 @@ def continuation_summary(ds) -> dict:
             "state": [float(x) for x in ds["event_state"].values[e]],
             "multipliers": [[float(m.real), float(m.imag)] for m in mu],
         })
+        if "event_stop" in ds:  # a chain's: the stop a grazing touches (0: none)
+            events[-1]["stop"] = int(ds["event_stop"].values[e])
     return {"parameter": ds.attrs["parameter"], "start_value": float(ds.attrs["start_value"]),
             "bounds": [float(ds.attrs["low"]), float(ds.attrs["high"])],
             "starts": json.loads(ds.attrs.get("starts", "{}")),
@@ -86,6 +88,7 @@ def format_continuation(ds) -> str:
                      f"{name} in [{b['range'][0]:.6g}, {b['range'][1]:.6g}]; {runs}; "
                      f"ends: {b['ends'][0]} / {b['ends'][1]}")
     for e in s["bifurcations"]:
-        lines.append(f"  {e['kind']:16s} {name} = {e['parameter']:.10g} on {e['branch']}; "
+        kind = f"{e['kind']} stop {e['stop']}" if e.get("stop") else e["kind"]
+        lines.append(f"  {kind:16s} {name} = {e['parameter']:.10g} on {e['branch']}; "
                      f"multipliers {_mu(e['multipliers'])}")
     return "\n".join(lines)

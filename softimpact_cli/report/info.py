@@ -116,7 +116,9 @@ def catalogue_summary(ds) -> dict:
     """Attractors (number, period, amplitude, multipliers, share of the one-body search,
     points) and combinations."""
     attractors = []
-    for i, number in enumerate(ds["attractor"].values):
+    numbers = ds["attractor_number"].values if "attractor_number" in ds \
+        else ds["attractor"].values  # a chain's: each body's own numbers
+    for i, number in enumerate(numbers):
         p = int(ds["attractor_period"].values[i])
         re, im = ds["multiplier_re"].values[i], ds["multiplier_im"].values[i]
         attractors.append({
@@ -134,6 +136,13 @@ def catalogue_summary(ds) -> dict:
            "counts": {k[6:]: int(v) for k, v in ds.attrs.items() if k.startswith("count_")}}
     if "combination_name" in ds:
         out["combinations"] = [str(n) for n in ds["combination_name"].values]
+    if "combination_survives" in ds:  # a chain's: each stop's critical values
+        out["stops"] = [float(v) for v in ds["stop_value"].values]
+        out["critical"] = {str(n): [float(v) for v in row] for n, row in zip(
+            ds["combination_name"].values, ds["combination_critical"].values, strict=True)}
+        out["surviving"] = [str(n) for n, ok in zip(
+            ds["combination_name"].values, ds["combination_survives"].values, strict=True)
+            if ok]
     return out
 
 
@@ -152,6 +161,16 @@ def format_catalogue(ds) -> str:
     if "combinations" in summary:
         names = summary["combinations"]
         lines.append(f"combinations ({len(names)}): " + ", ".join(names))
+    if "critical" in summary:  # a chain's products: each stop's critical value
+        stops = summary["stops"]
+        width = max(len(n) for n in summary["critical"]) if summary["critical"] else 10
+        lines.append(f"{'product':{width}s} " + " ".join(
+            f"{f'stop {s} ({v:g})':>14s}" for s, v in enumerate(stops, 1)) + "  survives")
+        for name, row in summary["critical"].items():
+            lines.append(f"{name:{width}s} " + " ".join(f"{v:14.6f}" for v in row)
+                         + f"  {'yes' if name in summary['surviving'] else 'no'}")
+        lines.append(f"surviving ({len(summary['surviving'])}): "
+                     + (", ".join(summary["surviving"]) or "none"))
     return "\n".join(lines)
 
 

@@ -69,7 +69,10 @@ def _is_number(v: str) -> bool:
 
 
 def _where(point: dict) -> str:
-    return ", ".join(f"{a}={text(point[a])}" for a in every_axis() if a in point)
+    """A grid point's axes: a chain's parameters (dotted names, ``stop.1.d``) first, as
+    its grid dims are, then the presets' axes it has."""
+    axes = [a for a in point if "." in a] + [a for a in every_axis() if a in point]
+    return ", ".join(f"{a}={text(point[a])}" for a in axes)
 
 
 def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:

@@ -22,8 +22,15 @@ from ..analysis.catalogue import (
     search_from_arrays,
     search_key_material,
 )
+from ..analysis.chain_catalogue import (
+    ChainCatalogue,
+    build_chain_catalogue,
+    chain_catalogue_dataset,
+)
+from ..analysis.chain_dcrit import body_problem as chain_body_problem
 from ..analysis.engine import Problem
 from ..config import IntegratorSettings
+from ..config.chain_scene import CHAIN
 from ..config.scene import forcing_period
 from ..systems import System
 from ..systems.base import check_bodies
@@ -54,6 +61,25 @@ def with_catalogue(ds: xr.Dataset, cat: Catalogue, scene, *,
     return ds
 
 
+def catalogue_table(cat: Catalogue | ChainCatalogue, system: System,
+                    integrator: IntegratorSettings) -> xr.Dataset:
+    """The catalogue's dataset: a preset's (``catalogue_dataset``) or a chain's
+    (``chain_catalogue_dataset``)."""
+    if isinstance(cat, ChainCatalogue):
+        return chain_catalogue_dataset(cat, system)
+    return catalogue_dataset(cat, system, integrator)
+
+
+def scene_chain_searches(scene, progress=None) -> list[BodySearch]:
+    """Each body of a chain scene searched alone over its [catalogue] section's initial
+    conditions at t0 = 0, through the catalogue cache (in body order)."""
+    c, states = scene.catalogue, catalogue_states(scene)
+    return [cached_body_search(chain_body_problem(scene.system, scene.values, i,
+                                                  scene.integrator), states, 0.0,
+                               c.match_tol, progress)
+            for i in range(1, scene.system.bodies + 1)]
+
+
 def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:
     """The one-body search every scene's catalogue starts from, over its [catalogue]
     section's initial conditions (``states``, when the caller drew them already) at
@@ -66,8 +92,13 @@ def scene_body_attractors(scene, progress=None, states=None) -> BodySearch:
 
 def build_catalogue(system: System, values: dict, integrator: IntegratorSettings,
                     states: np.ndarray, t0: float = 0.0, match_tol: float = 1e-3,
-                    progress=None) -> Catalogue:
-    """The full catalogue: left attractors, and for a pair the right ones and combinations."""
+                    progress=None) -> Catalogue | ChainCatalogue:
+    """The full catalogue: left attractors, and for a pair the right ones and combinations;
+    for a chain (``model = "chain"``) its :class:`ChainCatalogue` (each body searched
+    through the cache; ``progress`` gets N ticks per body)."""
+    if system.model == CHAIN:
+        return build_chain_catalogue(system, values, integrator, states, t0, match_tol,
+                                     progress, search=cached_body_search)
     check_bodies(system.bodies, "build_catalogue (left and right attractors)")
     problem = body_problem(system, values, integrator)
     search = cached_body_search(problem, states, t0, match_tol, progress)

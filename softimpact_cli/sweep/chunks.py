@@ -28,7 +28,8 @@ from ..kernels.codes import (
     UNRESOLVED,
     label_code_of_status,
 )
-from ..systems import get_system
+from ..systems import System, get_system
+from ..systems.chain import ChainModel, chain_system
 from .second_stage import pack
 
 CAPTURE_MARGIN = 10.0  # d - d_crit must exceed this many capture radii
@@ -59,7 +60,8 @@ class SweepContext:
     catalogue's parameters over the grid (``config.axes.catalogue_key``: phi, and the
     body's parameters when they are swept); known : per catalogue key, the stable
     non-impacting orbits a trajectory may be captured by, as (section points (q, dim) in
-    time order, d_crit) pairs (None: no capture).
+    time order, d_crit) pairs (None: no capture); chain : the structure of a chain
+    (``model = "chain"``: its system is built from it), None for a preset.
     """
 
     model: str
@@ -73,6 +75,13 @@ class SweepContext:
     names: tuple[str, ...]
     label_tol: float
     known: dict | None = None
+    chain: ChainModel | None = None
+
+    def system(self) -> System:
+        """The model: a preset from the registry, or the chain of ``chain``."""
+        if self.chain is not None:
+            return chain_system(self.chain)
+        return get_system(self.model, self.bodies)
 
     def known_orbits(self, values: dict) -> KnownOrbits | None:
         """The known orbits that exist at these parameter values, safely clear of contact:
@@ -92,7 +101,7 @@ class SweepContext:
 
     def catalogue_key(self, values: dict) -> tuple[float, ...]:
         """The key of ``catalogues`` and ``known`` that serves these parameter values."""
-        return catalogue_key(get_system(self.model, self.bodies), values)
+        return catalogue_key(self.system(), values)
 
     def point_values(self, point: int) -> tuple[dict, float]:
         """(parameter values, grid t0) of grid point number ``point``."""
@@ -138,7 +147,7 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     n = stop - start
     out = {k: np.zeros(n, dtype=t) for k, t in RESULT_FIELDS.items()}
     orbits: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
-    system = get_system(ctx.model, ctx.bodies)
+    system = ctx.system()
     n_ic = ctx.states.shape[0]
     s = ctx.integrator
     problem = None

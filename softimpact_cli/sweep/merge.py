@@ -6,7 +6,6 @@ from __future__ import annotations
 
 from ..analysis.engine import Problem
 from ..analysis.impacting import ImpactingOrbits
-from ..systems import get_system
 from .chunks import RESULT_FIELDS, SweepContext
 
 
@@ -21,7 +20,7 @@ def keep_first_orbits(orbits: dict, found: dict) -> None:
 def impacting_numbering(context: SweepContext) -> ImpactingOrbits:
     """The result's numbering of impacting orbits (``analysis.impacting``): give it the
     chunks in flat order (``merge_chunk``)."""
-    system = get_system(context.model, context.bodies)
+    system = context.system()
     return ImpactingOrbits(
         lambda point: Problem(system, context.point_values(point)[0], context.integrator),
         context.label_tol)

@@ -11,6 +11,7 @@ from ..analysis.attributes import attribute_list
 from ..analysis.labels import latex_of, name_of
 from ..config import Scene, forcing_period
 from ..config.axes import GRID_AXES, axis_units
+from ..config.chain_scene import CHAIN
 from .chunks import RESULT_FIELDS
 
 ATTRIBUTES = {
@@ -152,8 +153,13 @@ def grid_dims(ds) -> tuple[str, ...]:
 
 def grid_axes(ds) -> tuple[str, ...]:
     """Every axis with a value at each grid point: the model parameters the sweep spans
-    besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES."""
-    return tuple(attribute_list(ds.attrs, "grid_parameters")) + GRID_AXES
+    besides GRID_AXES (attribute ``grid_parameters``), then GRID_AXES. A chain's result
+    (attribute ``model = "chain"``) has no pair's coupling: its d, phi, k_c, c_c dims
+    (length 1, kept so every sweep result has them) are no axes of it."""
+    own = tuple(attribute_list(ds.attrs, "grid_parameters"))
+    if ds.attrs.get("model") == CHAIN:
+        return own + ("t0",)
+    return own + GRID_AXES
 
 
 def grid_point(ds, index: tuple[int, ...]) -> dict:

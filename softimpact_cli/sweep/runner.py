@@ -11,12 +11,14 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..analysis.catalogue import Catalogue, catalogue_dataset, extend_catalogue, require_attractors
+from ..analysis.catalogue import Catalogue, extend_catalogue, require_attractors
+from ..analysis.chain_catalogue import extend_chain_catalogue
 from ..analysis.critical_distance import critical_distance, uncoupled_pair
 from ..config import ConfigError, Scene, forcing_period
 from ..config.axes import catalogue_axes, catalogue_key
+from ..config.chain_scene import CHAIN
 from ..store import open_result
-from ..store.catalogues import scene_body_attractors
+from ..store.catalogues import catalogue_table, scene_body_attractors, scene_chain_searches
 from ..store.lock import output_lock
 from ..store.provenance import command_line, history_line, provenance
 from ..store.sweep_store import (
@@ -44,6 +46,8 @@ def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ..
     first, then any new name of the others, so that a name has one code throughout).
     """
     system = scene.system
+    if system.model == CHAIN:
+        return chain_catalogues(scene, progress)
     check_bodies(system.bodies, "prepare_catalogues (a body or a pair's combinations)")
     searches = {}  # body parameters -> the one-body search there
     catalogues = {}
@@ -56,6 +60,26 @@ def prepare_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ..
             at = replace(scene, values={**scene.values, **values})
             searches[body] = scene_body_attractors(at, progress)
         catalogues[key] = extend_catalogue(system, values, scene.integrator, *searches[body])
+    names: dict[str, None] = {}
+    for cat in catalogues.values():
+        names.update(dict.fromkeys(cat.names))
+    return catalogues, tuple(names)
+
+
+def chain_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ...]]:
+    """:func:`prepare_catalogues` of a chain: its bodies searched (through the catalogue
+    cache) once per distinct value of the axes a body's attractors depend on
+    (``catalogue_axes``: not the stops'), with the products' critical values; which
+    survive is said at the first grid point of each (``ChainCatalogue.survives``; the
+    labels do not depend on it)."""
+    system = scene.system
+    catalogues = {}
+    for values in catalogue_points(scene):
+        key = catalogue_key(system, values)
+        if key not in catalogues:
+            at = replace(scene, values={**scene.values, **values})
+            catalogues[key] = extend_chain_catalogue(system, at.values,
+                                                     scene_chain_searches(at, progress))
     names: dict[str, None] = {}
     for cat in catalogues.values():
         names.update(dict.fromkeys(cat.names))
@@ -84,8 +108,8 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
     (``analysis.critical_distance``); which of them exist depends on d, decided per grid
     point by ``SweepContext.known_orbits``.
     """
-    if scene.integrator.capture_tol <= 0.0:
-        return None
+    if scene.integrator.capture_tol <= 0.0 or scene.system.model == CHAIN:
+        return None  # a chain: capture by known orbits is not written for its stops yet
 
     check_bodies(scene.system.bodies, "capturable_orbits (d_crit of a pair's x1 - x2 - d)")
     axes = catalogue_axes(scene.system)
@@ -115,7 +139,7 @@ def sweep_context(scene: Scene, catalogues: dict, names: tuple[str, ...],
         model=scene.system.model, bodies=scene.system.bodies, values=dict(scene.values),
         integrator=scene.integrator, grid=scene.grid, states=ic.array(), t0=t0,
         catalogues=catalogues, names=names, label_tol=scene.analysis.label_tol,
-        known=capturable_orbits(scene, catalogues),
+        known=capturable_orbits(scene, catalogues), chain=scene.system.extra.get("chain"),
     )
 
 
@@ -180,7 +204,7 @@ def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: di
     after = scene.analysis.after_sweep  # the kind's hook: e.g. the map's solution counts
     if after is not None:
         ds = after(ds, scene, inputs.first)
-    catalogue_vars = catalogue_dataset(inputs.first, scene.system, scene.integrator)
+    catalogue_vars = catalogue_table(inputs.first, scene.system, scene.integrator)
     ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
     ds.attrs["catalogue_source"] = inputs.first.source  # "computed" or "cache <key>"
     # the search's own counts (the merge keeps the sweep's attrs): report/outcomes.py
@@ -194,7 +218,7 @@ MAX_ROUNDS = 4  # rounds of chunk computing (later ones redo parts lost during t
 
 def _header(scene: Scene, plan: Plan, catalogue: Catalogue, started: float,
             history: str) -> xr.Dataset:
-    ds = catalogue_dataset(catalogue, scene.system, scene.integrator)
+    ds = catalogue_table(catalogue, scene.system, scene.integrator)
     ds.attrs.update(provenance(scene, started, started, 0.0))
     ds.attrs.update({"complete": 0, "analysis": scene.analysis.kind, "n": plan.n_total,
                      "n_chunks": plan.n_chunks, "chunk_size": plan.chunk_size,

@@ -26,7 +26,6 @@ from ..analysis.nonperiodic import (
 )
 from ..analysis.section_follow import SectionFollow
 from ..kernels.codes import PENDING
-from ..systems import get_system
 
 SECTION_ARRAYS = ("section_flat", "section_point", "section_ncells", "section_cells",
                   "section_ncloud", "section_cloud", "section_impacting", "section_end",
@@ -93,7 +92,7 @@ def relabel(context, labels: np.ndarray, orbits: dict, found: list[Recurrent],
 
     def spectrum(point: int, state: np.ndarray, t: float):
         values, _ = context.point_values(point)
-        return section_spectrum(Problem(get_system(context.model, context.bodies), values, s),
+        return section_spectrum(Problem(context.system(), values, s),
                                 state, t)
 
     seeds = known_attractors(known, s.section_cell)

@@ -132,15 +132,17 @@ def test_example_chain_prints_the_commented_scene():
 
 
 @pytest.mark.parametrize("kind, extra, message", [
-    ("basins", "", "[analysis] kind = 'basins': not yet for model = \"chain\" (its attractors "
-                   "are named from one body's catalogue"),
-    ("continuation", "", "[analysis] kind = 'continuation': not yet for model = \"chain\" (its "
-                         "shooting and events follow a pair's one stop, x1 - x2 - d; on a "
-                         "chain kind \"bifurcation\" follows the products along any "
-                         "parameter); a chain runs kind 'trajectory' or 'lyapunov' or "
-                         "'dcrit' or 'bifurcation'"),
+    ("tipping", "", "[analysis] kind = 'tipping': not yet for model = \"chain\" (its attractors "
+                    "are named from one body's catalogue"),
+    ("design", "", "[analysis] kind = 'design': not yet for model = \"chain\" (it searches "
+                   "a pair's (d, phi) plane of critical distances; a chain's region over its "
+                   "stops and phases is not built yet: kind \"map\" gives which products "
+                   "survive over two parameters, kind \"stability\" a point's basin "
+                   "stability); a chain runs kind 'trajectory' or 'lyapunov' or 'dcrit' or "
+                   "'bifurcation' or 'catalogue' or 'basins' or 'stability' or 'map' or "
+                   "'continuation'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
-                  "curves from the catalogue's orbits, and a chain has no catalogue yet"),
+                  "curves from a pair's combinations and follows them in (d, phi)"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
                                           "a state"),
 ])

@@ -76,7 +76,7 @@ def test_a_chain_dcrit_runs_and_is_described_and_drawn(tmp_path):
     assert ds.sizes["stop"] == 2 and list(ds["point"].values) == [1.0, 1.5]
     assert ds.sizes["combination"] >= 1 and np.isfinite(ds["d_crit"].values).any()
     text = format_summary(describe(ds), ds)
-    assert "F.2=1" in text and "stop 2: 1:P1^1" in text
+    assert "F.2=1" in text and "stop 2: B1:P1^1" in text
     fig = plot.dcrit(ds)
     assert len(fig.axes) == 2
 
@@ -105,10 +105,34 @@ def test_a_chain_bifurcation_runs_and_is_described_and_drawn(tmp_path):
     assert ds["section_x"].dims == ("branch", "step", "point", "body")
     assert list(ds["step"].values) == [12.0, 11.0, 10.0, 9.0, 8.0]
     text = format_summary(describe(ds), ds)
-    assert "stop.1.d" in text and "1:P1^1" in text
+    assert "stop.1.d" in text and "B1:P1^1" in text
     assert "destroyed at stop.1.d" in text and "impacting for stop.1.d in" in text
     assert "destroyed at d" not in text  # the followed parameter is named, not a gap d
     assert len(plot.bifurcation(ds).axes) == 3
     with pytest.raises(ConfigError, match="branches: 'L1\\^1' is not a non-impacting product"):
         run_scene(parse_scene(BIFURCATION.replace('step = 1.0', 'step = 1.0\nbranches = ["L1^1"]')
                               + f'[output]\npath = "{tmp_path / "c.h5"}"\n'))
+
+
+CATALOGUE = CHAIN.replace('kind = "dcrit"\nsamples = 128', 'kind = "catalogue"\ngrid = 4\n'
+                          'random = 0\nbox = {x = [-4.0, 4.0], v = [-4.0, 4.0]}'
+                          ).replace("[catalogue]\ngrid = 3\nrandom = 0\n", "")
+
+
+def test_a_chain_catalogue_runs_and_is_described_and_drawn(tmp_path):
+    """Each body's attractors, their products and the stops' verdicts, through the scene:
+    the products are every body's attractors combined (2 x 2 x 2 here), and the table says
+    which survive the gap 2 and the left wall at -3 (none: every product's x1 - x2 exceeds
+    2; tests/analysis/test_chain_catalogue.py checks the verdicts by integration)."""
+    scene = parse_scene(CATALOGUE + f'[output]\npath = "{tmp_path / "c.h5"}"\n')
+    ds = run_scene(scene)
+    bodies = [int(b) for b in ds["attractor_body"].values]
+    assert bodies == [1, 1, 2, 2, 3, 3] and ds.sizes["combination"] == 8
+    assert ds["combination_critical"].dims == ("combination", "stop")
+    assert (ds["combination_critical"].values[:, 0] > 2.0).all()
+    text = format_summary(describe(ds), ds)
+    assert "B3:P1^2" in text and "B1:P1^2 B2:P1-0^1 B3:P1-0^2" in text
+    assert "surviving (0): none" in text
+    fig = plot.catalogue(ds)
+    assert len(fig.axes) == 9  # the attractors, then one panel per product
+    assert len(fig.axes[1].lines) == 6  # three bodies: x(t) and section points each
