@@ -47,12 +47,8 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
 CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "basins",
-               "stability", "map")
-_PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
-               "combinations (L/R names); a chain's are not named yet")
+               "stability", "map", "fractality", "fatal_shock", "tipping")
 CHAIN_REFUSALS = {
-    "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
-    "fatal_shock": _PAIR_NAMES,
     "design": "it chooses a pair's (d, phi, k_c, c_c), not yet a chain's stops",
     "continuation": ("its shooting and events follow a pair's one stop, x1 - x2 - d; on a "
                      "chain kind \"bifurcation\" follows the products along any parameter"),
@@ -69,8 +65,8 @@ def chain_refusal(kind: str, doc: dict) -> str | None:
                 + " or ".join(map(repr, CHAIN_KINDS)))
     if kind == "lyapunov" and (doc.get("analysis", {}).get("start") == "catalogue"
                                or "grid" in doc):
-        return ("on a chain only from a state (start = \"state\", no [grid]): the "
-                "catalogue and the grid axes are a preset's")
+        return ("on a chain only from a state (start = \"state\", no [grid]): its start "
+                "from the catalogue and its grid axes are written for the presets")
     return None
 
 

@@ -132,14 +132,15 @@ def test_example_chain_prints_the_commented_scene():
 
 
 @pytest.mark.parametrize("kind, extra, message", [
-    ("tipping", "", "[analysis] kind = 'tipping': not yet for model = \"chain\" (its attractors "
-                    "are named from one body's catalogue"),
+    ("design", "", "[analysis] kind = 'design': not yet for model = \"chain\" (it chooses a "
+                   "pair's (d, phi, k_c, c_c), not yet a chain's stops)"),
     ("continuation", "", "[analysis] kind = 'continuation': not yet for model = \"chain\" (its "
                          "shooting and events follow a pair's one stop, x1 - x2 - d; on a "
                          "chain kind \"bifurcation\" follows the products along any "
                          "parameter); a chain runs kind 'trajectory' or 'lyapunov' or "
                          "'dcrit' or 'bifurcation' or 'catalogue' or 'basins' or "
-                         "'stability'"),
+                         "'stability' or 'map' or 'fractality' or 'fatal_shock' or "
+                         "'tipping'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
                   "curves from a pair's combinations and follows them in (d, phi)"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
