@@ -206,8 +206,9 @@ class System:
     def _preset_only(self, what: str) -> None:
         """One line for what a chain (model = "chain") cannot do here yet."""
         if self._scene.system.model == "chain":
-            raise ConfigError(f"System.{what}: not yet for model = \"chain\" (a chain's "
-                              "attractors have no names, its scene no dict form); "
+            raise ConfigError(f"System.{what}: not yet for model = \"chain\" (the "
+                              "Python System holds a preset's scene; a chain's scene runs "
+                              "its catalogue and sweeps through softimpact sweep); "
                               "trajectory() works")
 
     def _labelling(self):

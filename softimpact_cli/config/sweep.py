@@ -272,6 +272,8 @@ def _read_panels(sec: Section, values: Mapping, allowed: tuple[str, ...], period
     """[grid] panels = [{d = .., phi = ..}, ...]: an explicit list of parameter points."""
     panels = sec.raw("panels")
     sec.finish(("panels",))  # panels exclude the other grid keys
+    if isinstance(panels, list):  # a chain's {stop.1.d = ..}: TOML nests dotted keys
+        panels = [flat_grid(p) if isinstance(p, dict) else p for p in panels]
     if not isinstance(panels, list) or not panels or not all(isinstance(p, dict)
                                                             for p in panels):
         raise sec.fail("panels", "must be a non-empty list of tables like {d = 10.0, "

@@ -47,12 +47,8 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
 CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "basins",
-               "stability", "map", "continuation")
-_PAIR_NAMES = ("its attractors are named from one body's catalogue and a pair's "
-               "combinations (L/R names); a chain's are not named yet")
+               "stability", "map", "continuation", "fractality", "fatal_shock", "tipping")
 CHAIN_REFUSALS = {
-    "tipping": _PAIR_NAMES, "fractality": _PAIR_NAMES,
-    "fatal_shock": _PAIR_NAMES,
     "design": ("it searches a pair's (d, phi) plane of critical distances; a chain's "
                "region over its stops and phases is not built yet: kind \"map\" gives "
                "which products survive over two parameters, kind \"stability\" a "
@@ -76,8 +72,8 @@ def chain_refusal(kind: str, doc: dict) -> str | None:
                 "run)")
     if kind == "lyapunov" and (doc.get("analysis", {}).get("start") == "catalogue"
                                or "grid" in doc):
-        return ("on a chain only from a state (start = \"state\", no [grid]): the "
-                "catalogue and the grid axes are a preset's")
+        return ("on a chain only from a state (start = \"state\", no [grid]): its start "
+                "from the catalogue and its grid axes are written for the presets")
     return None
 
 

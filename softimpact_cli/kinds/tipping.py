@@ -18,6 +18,7 @@ import xarray as xr
 
 from ..analysis.attributes import attribute_list
 from ..analysis.tipping import attractor_destinations, tipping_probabilities
+from ..config.axes import is_chain
 from ..config.reader import ConfigError
 from ..report.compare import compare_sweeps, sweep_comparison_text
 from ..report.info import sweep_summary
@@ -81,8 +82,9 @@ def add_tipping(ds, scene, catalogue):
 
 def _point_text(scene, index: int) -> str:
     point = scene.grid.point(index)
+    pair = not is_chain(scene.system)  # a chain has no d, phi of its own
     return ", ".join(f"{a} = {v:g}" for a, v in point.items()
-                     if a in scene.grid.swept or a in ("d", "phi"))
+                     if a in scene.grid.swept or (pair and a in ("d", "phi")))
 
 
 def summary(ds) -> dict:

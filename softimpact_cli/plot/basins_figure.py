@@ -72,6 +72,9 @@ def panel_title(ds, index: tuple[int, ...], axes=None) -> str:
         v = point[a]
         if isinstance(v, str):
             continue
+        if a not in SYMBOLS:  # a chain's parameter by its name (stop.1.d): plain text
+            parts.append(f"{a} = {v:g}")
+            continue
         parts.append(f"${SYMBOLS[a]} = {axis_value_text(a, v, T)}$")
     return ", ".join(parts)
 

@@ -26,6 +26,7 @@ from ..analysis.chain_catalogue import (
     ChainCatalogue,
     build_chain_catalogue,
     chain_catalogue_dataset,
+    extend_chain_catalogue,
 )
 from ..analysis.chain_dcrit import body_problem as chain_body_problem
 from ..analysis.engine import Problem
@@ -37,9 +38,15 @@ from ..systems.base import check_bodies
 from . import catalogue_cache
 
 
-def scene_catalogue(scene) -> Catalogue:
-    """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...);
-    one line (ConfigError) and nothing further computed when it finds no attractor."""
+def scene_catalogue(scene) -> Catalogue | ChainCatalogue:
+    """The [catalogue] search of a scene that needs one (dcrit, bifurcation, design...; a
+    chain's: each body's, :func:`scene_chain_searches`); one line (ConfigError) and
+    nothing further computed when it finds no attractor."""
+    if scene.system.model == CHAIN:
+        cat = extend_chain_catalogue(scene.system, dict(scene.values),
+                                     scene_chain_searches(scene))
+        require_attractors(cat, scene.analysis.kind, str(scene.source))
+        return cat
     search = scene_body_attractors(scene)
     cat = extend_catalogue(scene.system, dict(scene.values), scene.integrator, *search)
     require_attractors(cat, scene.analysis.kind, str(scene.source))

@@ -80,6 +80,10 @@ def label_states(scene: Scene, point: dict, states: np.ndarray, t0: float = 0.0,
     over that list of states (any kind's scene will do)."""
     values = {**scene.values, **point, "t0": float(t0)}
     grid = Grid({a: (float(values.get(a, 0.0)),) for a in GRID_AXES}, ())
+    # the point's other parameters (a chain's stop.1.d, a body's F) are the scene's values
+    # there: the grid above holds d, phi, k_c, c_c and t0 only
+    scene = replace(scene, values={**scene.values, **{a: v for a, v in point.items()
+                                                      if a in scene.values}})
     ic = InitialConditions(kind="list", state_names=tuple(scene.system.state_names),
                            states=tuple(map(tuple, np.asarray(states, float).tolist())),
                            t0=float(t0))

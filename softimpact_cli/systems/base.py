@@ -36,18 +36,19 @@ registration and where the code branches on a preset's body count). Where a chai
 1. kernels and ``Surfaces``: done. Several contact surfaces (``contacts``, a bit mask);
    onsets and the maximum penetration are counted over all of them (one running maximum,
    not one per stop).
-2. ``config``: done for the scene form (``config/chain_scene.py``); the sweep kinds' [grid]
-   axes are a preset's (``config/axes.py``); dcrit and bifurcation on a chain read one
-   named parameter (``stop.1.d``, ``phi.3``: ``config/sweep.py`` ``read_parameter_axis``).
+2. ``config``: done for the scene form (``config/chain_scene.py``); a chain's [grid] axes
+   are its parameters by name (``config/axes.py`` ``is_chain``; ``stop.1.d``, ``phi.3``:
+   ``config/sweep.py`` ``flat_grid``, ``read_parameter_axis`` for dcrit and bifurcation).
 3. Kinds (``kinds/scene.py`` ``CHAIN_KINDS``): trajectory, lyapunov (from a state), dcrit
-   per stop (``analysis/chain_dcrit.py``) and bifurcation along any parameter
-   (``analysis/chain_bifurcation.py``) run on a chain; the others refuse it in one line
-   when the scene is read, because
-4. the sweep builds a preset's catalogue: the names of n bodies are ready
-   (``analysis/labels.py``, ``catalogue.joint_orbit``, ``combination_names``; recurrence
-   cells up to 16 coordinates in ``kernels/cells.py``), the chain's catalogue is not;
-5. the pair-only analyses (``design``, ``continuation``, ``map``, the capture of known
-   orbits in ``sweep/runner.py``) use ``x1 - x2 - d``.
+   per stop (``analysis/chain_dcrit.py``), bifurcation along any parameter
+   (``analysis/chain_bifurcation.py``), catalogue (``analysis/chain_catalogue.py``: each
+   body's attractors, their products named with the n-body names, each stop's critical
+   values deciding which survive), and the sweeps basins, stability, map, tipping,
+   fractality and fatal_shock, labelled by that catalogue (``sweep/runner.py``
+   ``chain_catalogues``; [grid] axes by the chain's parameter names) run on a chain;
+4. design, continuation and atlas refuse it in one line when the scene is read: they
+   follow the pair's one stop ``x1 - x2 - d``, as the capture of known orbits in
+   ``sweep/runner.py`` does (off on a chain).
 """
 
 from __future__ import annotations

@@ -136,3 +136,61 @@ def test_a_chain_catalogue_runs_and_is_described_and_drawn(tmp_path):
     fig = plot.catalogue(ds)
     assert len(fig.axes) == 9  # the attractors, then one panel per product
     assert len(fig.axes[1].lines) == 6  # three bodies: x(t) and section points each
+
+
+FATAL = """\
+[system]
+model = "chain"
+bodies = 2
+k2 = 0.05
+F = 1.5
+w = 1.4
+phi = [0.0, "pi"]
+
+[[stop]]
+between = [1, 2]
+d = 6.5
+
+[catalogue]
+grid = 4
+random = 0
+box = {x = [-4.0, 4.0], v = [-4.0, 4.0]}
+
+[analysis]
+kind = "fatal_shock"
+solution = "L1^1 R1-0^1"
+phases = 1
+directions = 3
+scan = 3
+max_shock = 6.0
+tol = 0.1
+"""
+
+
+def test_a_chains_fatal_shock_lands_where_an_independent_run_ends(tmp_path):
+    """Two Duffing bodies, three products surviving d = 6.5: each direction's fatal kick,
+    integrated here for 300 periods, ends on the product the result names (nearest
+    catalogue orbit), and the unkicked orbit stays on the solution."""
+    from softimpact_cli.analysis.engine import Problem, record_trajectory
+    from softimpact_cli.store.catalogues import scene_catalogue
+
+    scene = parse_scene(FATAL + f'[output]\npath = "{tmp_path / "f.h5"}"\n')
+    ds = run_scene(scene)
+    orbits = scene_catalogue(scene).orbits
+    problem = Problem(scene.system, scene.values, scene.integrator)
+
+    def ends_on(state, t0):
+        end = record_trajectory(problem, state, t0, 300, 1).section_y[-1]
+        return min(orbits, key=lambda n: float(np.min(np.max(np.abs(orbits[n] - end),
+                                                             axis=1))))
+
+    t0, orbit = float(ds["shock_time"].values[0]), ds["orbit_state"].values[0]
+    assert ends_on(orbit, t0) == "L1^1 R1-0^1"
+    fatal = 0
+    for j, r in enumerate(ds["shock_magnitude"].values[0]):
+        if np.isfinite(r):
+            kicked = orbit + r * ds["direction"].values[j]
+            assert ends_on(kicked, t0) == str(ds["shock_destination"].values[0, j])
+            fatal += 1
+    assert fatal >= 1
+    assert "mfs" in describe(ds) and len(plot.fatal_shock(ds).axes) >= 1

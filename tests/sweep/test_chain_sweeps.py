@@ -225,3 +225,52 @@ def test_a_two_body_chain_map_predicts_the_duffing_pairs_counts(tmp_path):
     found = ds["found_nonimpacting"].squeeze(drop=True).transpose("stop.1.d", "phi.2").values
     assert np.all(found <= predicted)
     assert len(plot.map(ds).axes) == 6  # three panels and their colour bars
+
+
+def test_fractality_measures_a_chains_plane_as_its_basins(tmp_path):
+    """kind = "fractality" on a chain sweeps the same plane as kind = "basins": its label
+    shares are the basins result's, and it counts that result's basins."""
+    from softimpact_cli.kinds.run import run_scene
+
+    plane = parse_scene(PLANE)
+    basins = run_sweep(plane, tmp_path / "b.h5", workers=1)
+    measured = run_scene(parse_scene(PLANE.replace(
+        'kind = "basins"', 'kind = "fractality"\nradii = [1, 2]\nbox_sizes = [2]')),
+                         workers=1)
+    names = [str(n) for n in basins["label_name"].values]
+    codes = basins["label"].values.ravel()
+    shares = {n: float(np.mean(codes == c)) for n, c in
+              zip(names, basins["label_code"].values, strict=True)}
+    got = dict(zip((str(n) for n in measured["label_name"].values),
+                   measured["label_share"].values[0].tolist(), strict=True))
+    assert got == pytest.approx(shares)
+    assert int(measured["n_basins"].values[0]) == sum(v > 0 for v in shares.values())
+
+
+TIPPING = PAIR_MAP.replace('kind = "map"', 'kind = "tipping"').replace(
+    'stop.1.d = [2.0, 4.0, 6.5]\nphi.2 = ["pi/2", "pi"]',
+    'panels = [{stop.1.d = 6.5}, {stop.1.d = 4.0}]').replace('"pi/2"]', '"pi"]')
+
+
+def test_a_chains_tipping_sends_the_products_the_new_gap_touches_elsewhere(tmp_path):
+    """Two Duffing bodies (phi.2 = pi) as the gap closes from 6.5 to 4: a product whose
+    critical value lies below 4 stays itself; one above it touches the stop, so its
+    orbit is sent elsewhere; the tipping shares of each row sum to one."""
+    scene = parse_scene(TIPPING)
+    assert scene.grid.swept == ("stop.1.d",)
+    ds = run_sweep(scene, tmp_path / "t.h5", workers=1)
+    crit = dict(zip((str(n) for n in ds["combination_name"].values),
+                    ds["combination_critical"].values[:, 0], strict=True))
+    checked = 0
+    for i, name in enumerate(ds["tip_solution"].values):
+        goes = {str(d) for d in ds["tip_destination"].values[i] if str(d)}
+        if crit[str(name)] < 4.0:
+            assert goes == {str(name)}
+        else:
+            assert str(name) not in goes
+        checked += 1
+    assert checked >= 2 and "stop.1.d = 6.5" in ds.attrs["tip_before"]
+    assert "d = 0" not in ds.attrs["tip_before"].replace("stop.1.d", "")
+    rows = ds["tip_probability"].sum("tip_to").values
+    assert np.allclose(rows[np.isfinite(rows) & (rows > 0)], 1.0)
+    assert len(plot.tipping(ds).axes) >= 3  # before, after, the tipping matrix
