@@ -133,20 +133,35 @@ ax.legend(loc="lower right", ncol=4, fontsize="small")
 # ([names](../howto/catalogue.md)): `L{p}^{n} R{p}-{s}^{n}` for a pair, one token per body
 # for three or more (`B1:P2^1 B2:P1-0^2 B3:P2-1^1`: each body on its own attractor, with
 # its shift), and `impacting P{p}` for a periodic solution in contact, as this one is. A
-# chain's trajectory does not carry a name yet (no catalogue of its bodies' attractors is
-# built for it): the tool reports the outcome, the period in forcing periods and the
+# chain's trajectory carries no name (a trajectory builds no catalogue of its bodies'
+# attractors; the sweep kinds below do): the tool reports the outcome, the period in forcing periods and the
 # contacts on the orbit, as printed above (`softimpact plot trajectory` titles it
 # "converged: period 1 T").
 #
 # ## Basins and basin stability
 #
-# Not for a chain yet: the sweep kinds name what each start reaches with those names.
-# A chain runs the kinds `trajectory` and `lyapunov`; the others refuse it in one line
-# when the scene is read:
+# The sweep kinds run on a chain too: its catalogue is each body's attractors searched
+# alone and their products, named as above, each stop's critical value deciding which
+# survive; a basin plane takes any two state coordinates by name or index (the others
+# fixed), basin stability random starts in the 2n-dimensional box. A dry run prints the
+# plan of a basin plane of this chain over (x1, v2):
 
 # %%
+basins = example[:example.index("[analysis]")] + """[analysis]
+kind = "basins"
+
+[initial_conditions]
+kind = "plane"
+axes = ["x1", "v2"]
+ranges = [[-3.0, 3.0], [-3.0, 3.0]]
+resolution = [40, 40]
+fixed = {x2 = 0.0, x3 = 0.0}
+
+[output]
+path = "results/chain_basins.h5"
+"""
 with open("chain_basins.toml", "w") as scene:
-    scene.write(example.replace('kind = "trajectory"', 'kind = "basins"'))
+    scene.write(basins)
 print("exit status:", softimpact("sweep", "chain_basins.toml", "--dry-run"))
 
 # %% [markdown]

@@ -208,9 +208,13 @@ def impact_loop(name, advance):
         return advance(rhs, p, y, t, t_end, surfaces, inner, state, samples)
 
     @_jit_as(f"{name}_impacts")
-    def stuck_chunk(rhs, p, y, t, t_end, surfaces, opts, inner, state, samples, table, f):
+    def stuck_chunk(rhs, p, y, span, surfaces, opts, inner, state, samples, impacts):
         """Advance a stuck phase by one chunk, or to its release; (status, time reached).
-        The status is the wrapped method's (TOO_MANY_SWITCHES: another surface switched)."""
+        ``span``: (t, t_end); ``impacts``: (the impact table's (at, size, rigid mask), the
+        work vector f). The status is the wrapped method's (TOO_MANY_SWITCHES: another
+        surface switched)."""
+        t, t_end = span
+        table, f = impacts
         A_s = surfaces[0]
         istate, fstate, _ = state
         rigid = table[2]
@@ -289,8 +293,8 @@ def impact_loop(name, advance):
             before = istate[MODE]
             stuck = before & rigid
             if stuck != 0:
-                status, t = stuck_chunk(rhs, p, y, t, t_end, surfaces, opts, inner, state,
-                                        samples, table, f)
+                status, t = stuck_chunk(rhs, p, y, (t, t_end), surfaces, opts, inner, state,
+                                        samples, (table, f))
                 stuck = istate[MODE] & rigid
                 before = (before & ~rigid) | stuck
             else:

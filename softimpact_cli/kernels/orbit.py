@@ -76,7 +76,7 @@ def classified(raw) -> Classified:
 
 def recorded(raw) -> Recorded:
     """``record``'s plain result, named."""
-    (status, n_written), (sample_t, sample_y), sections, counters, stuck = raw
+    (status, n_written), (sample_t, sample_y), sections, (counters, stuck) = raw
     return Recorded(status, sample_t, sample_y, n_written, *sections, counters, stuck)
 
 
@@ -353,8 +353,8 @@ def record(advance, rhs, p, start, n_periods, surfaces, opts, n_samples):
             section_y[n] = y
             contacts[n] = c
             max_g[n] = g
-    return ((status, istate[N_SAMPLES]), samples, (section_t, section_y, contacts, max_g), istate,
-            fstate[T_STUCK])
+    return ((status, istate[N_SAMPLES]), samples, (section_t, section_y, contacts, max_g),
+            (istate, fstate[T_STUCK]))
 
 
 @njit(cache=True)

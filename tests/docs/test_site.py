@@ -48,7 +48,7 @@ def test_the_site_builds_strict_with_every_page_and_tutorial(tmp_path):
             assert (site / "tutorials" / f"{path.stem}-1.png").stat().st_size > 5000
     own = (site / "tutorials" / "own_model.html").read_text()
     assert "bodies 1..3" in own and "exit status: 2" in own  # the bad stop's one line
-    assert "stop 3 (wall)" in own  # the chain ran, its contacts counted per stop
+    assert "stop 3 (body 3 / right wall)" in own  # the chain ran, each stop measured
     api = (site / "reference" / "api.html").read_text()
     assert 'id="softimpact_cli.api.sweep"' in api  # mkdocstrings rendered the module
     keys = (site / "reference" / "scene-keys.html").read_text()

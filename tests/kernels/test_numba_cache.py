@@ -2,10 +2,14 @@
 
 import json
 import os
+import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
+
+from softimpact_cli.kernels.numba_cache import cache_dir
 
 SCRIPT = """
 import sys
@@ -83,23 +87,27 @@ def cache_files(folder):
 
 
 @pytest.mark.slow
-def test_catalogue_in_ten_processes_stops_growing_the_cache(tmp_path):
+def test_catalogue_in_four_processes_stops_growing_the_cache(tmp_path):
     """Issue 20, items 8 and 16: the catalogue's Newton refinement (variational equations)
     compiled in every process and added one `orbit.flow` entry to the disk cache per run,
-    until numba failed with "underlying object has vanished". From the second process on,
-    nothing compiles and the cache folder stays byte for byte the same size."""
+    until numba failed with "underlying object has vanished". After a first process (on a
+    copy of this checkout's cache: warm after `make install`, compiled here otherwise),
+    nothing compiles and the cache folder stays byte for byte the same size. Ten
+    processes from a cold cache took minutes of the suite; three warm ones show the growth.
+    A cold cache's notice: tests/analysis/test_warmup.py."""
+    warm = Path(cache_dir())
+    shutil.copytree(warm, tmp_path / warm.name)
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
     runs, sizes = [], []
-    for _ in range(10):
+    for _ in range(4):
         proc = subprocess.run([sys.executable, "-c", CATALOGUE], capture_output=True,
                               text=True, env=env)
         assert proc.returncode == 0, proc.stderr
         runs.append(json.loads(proc.stdout))
         sizes.append(cache_files(tmp_path))
-    first, warm = runs[0], runs[1:]
-    assert first["compiled"] and first["missing"]  # a cold cache: compiled, and announced
+    first, warm_runs = runs[0], runs[1:]
     assert first["multipliers"]  # the catalogue refined at least one orbit
-    for run in warm:
+    for run in warm_runs:
         assert run["compiled"] == [] and run["missing"] == []
         assert run["multipliers"] == first["multipliers"]
     assert all(s == sizes[0] for s in sizes[1:])
