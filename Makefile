@@ -388,6 +388,7 @@ help:
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
 	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
 	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda, fig. 14(c) NS, pitchforks"
+	@echo "  stiff-limit       a soft wall tending to the rigid one as k_c grows -> results/stiff_limit.png"
 	@echo "  chaos             chaotic and quasi-periodic attractors: fig. 15(b) at c_c = 3, 4; the period-5 design"
 	@echo "  reproduce         the study's 89 statements checked -> results/reproduce.md (QUICK=1)"
 	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"
