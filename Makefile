@@ -282,10 +282,23 @@ bench: $(STAMP)
 # (issue 32: presets vs their chain form, a 6-body chain, a never-seen model's first run,
 # a 3-body chain's stability and basin plane, the install's compile CPU of the presets and
 # of the family apart; results/bench/chain_targets.md; CHAIN_TARGET_ARGS="--only six,fresh").
+# Then issue 33's: a rigid-impact basin plane against the stiff soft stop (k_c = 1e6, same
+# restitution, on its exact flow and on "auto"), CPU ratio in one run (results/bench/
+# rigid_targets.md; the issue's 200 x 200 plane: 91 s CPU in all; RIGID_TARGET_ARGS=
+# "--size 60" for a smaller one).
 # bench-settings: the measurement behind the defaults (candidate settings on the same planes).
 bench-targets: $(STAMP)
 	$(PY) benchmarks/bench_targets.py $(TARGET_ARGS)
 	$(PY) benchmarks/bench_chain_targets.py $(CHAIN_TARGET_ARGS)
+	$(PY) benchmarks/bench_rigid_targets.py $(RIGID_TARGET_ARGS)
+
+# The stiff limit (issue 33): a soft wall's stroboscopic orbit against the rigid wall's as
+# k_c grows 1e2 .. 1e6, slope -1/2 (results/stiff_limit.png, copied to docs/gallery/ for the
+# README and the gallery; about 15 s).
+stiff-limit: $(STAMP)
+	$(PY) benchmarks/stiff_limit.py --out results/stiff_limit.png
+	$(call GALLERY,results/stiff_limit.png)
+.PHONY: stiff-limit
 
 bench-settings: $(STAMP)
 	$(PY) benchmarks/bench_settings.py $(SETTINGS_ARGS)
@@ -375,6 +388,7 @@ help:
 	@echo "  designs design-duffing design-bilinear   designing for one solution"
 	@echo "  lyapunov          Lyapunov exponents: Ueda, fig. 14(c) catalogue, along c_c"
 	@echo "  continuation      branches of periodic orbits: Duffing folds in F, fig. 7 in d, Ueda, fig. 14(c) NS, pitchforks"
+	@echo "  stiff-limit       a soft wall tending to the rigid one as k_c grows -> results/stiff_limit.png"
 	@echo "  chaos             chaotic and quasi-periodic attractors: fig. 15(b) at c_c = 3, 4; the period-5 design"
 	@echo "  reproduce         the study's 89 statements checked -> results/reproduce.md (QUICK=1)"
 	@echo "  bench bench-precision bench-extreme       benchmarks (results/bench/)"

@@ -153,3 +153,24 @@ def test_the_never_seen_chains_are_valid_scenes():
         assert summary.startswith(f"{model.bodies} bodies, {len(model.kinks)} kink(s), "
                                   f"{len(model.stops)} stops")
         assert model.stops[-1].wall and 2 <= model.bodies <= 7
+
+
+def test_the_rigid_target_compares_like_with_like(tmp_path):
+    """bench_rigid_targets: the soft wall's c_c gives the rigid wall's restitution (a linear
+    spring-dashpot released at zero overlap: r = exp(-zeta_c pi / sqrt(1 - zeta_c^2))), and
+    a 3 x 3 plane's run writes its three rows, the outcomes of both stops agreeing."""
+    import numpy as np
+
+    sys.path.insert(0, str(BENCHMARKS))
+    try:
+        targets = importlib.import_module("bench_rigid_targets")
+    finally:
+        sys.path.remove(str(BENCHMARKS))
+    z = targets.ZETA_C
+    assert np.exp(-z * np.pi / np.sqrt(1.0 - z * z)) == pytest.approx(targets.R, rel=1e-12)
+    assert "c_c = " in targets.scene_text("paper") and "r = 0.8" in targets.scene_text("rigid")
+    out = tmp_path / "rigid.md"
+    assert targets.main(["--size", "3", "--out", str(out)]) == 0
+    rows = [line for line in out.read_text().splitlines() if line.startswith("| impact")]
+    assert len(rows) == 3 and "(exact)" in rows[1] and "(auto)" in rows[2]
+    assert all("agree on 100.0% of starts" in row for row in rows[1:])

@@ -252,3 +252,31 @@ def test_the_readme_lists_every_kind_of_the_registry():
     listed = re.findall(r"^  - `(\w+)`: (.*)$", README, re.M)
     assert [name for name, _ in listed] == list(REGISTRY)
     assert all(line == KINDS[name].description for name, line in listed)
+
+
+def test_make_stiff_limit_runs_its_recipe_and_draws_the_rate(tmp_path, capsys):
+    """The README's `make stiff-limit`: its recipe's script (``make -n``), run here with
+    the figure written to a scratch path, finds the soft wall's distance to the rigid
+    orbit falling as k_c^(-1/2) (slope within 0.05 over k_c >= 1e3) and draws it."""
+    import importlib
+    import subprocess
+    import sys
+
+    assert "make stiff-limit" in README
+    recipe = subprocess.run(["make", "-n", "stiff-limit"], cwd=ROOT, capture_output=True,
+                            text=True, check=True).stdout
+    assert "benchmarks/stiff_limit.py --out results/stiff_limit.png" in recipe
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    try:
+        stiff_limit = importlib.import_module("stiff_limit")
+    finally:
+        sys.path.remove(str(ROOT / "benchmarks"))
+    out = tmp_path / "stiff_limit.png"
+    assert stiff_limit.main(["--out", str(out)]) == 0
+    assert out.stat().st_size > 10_000
+    printed = capsys.readouterr().out
+    distance = [float(d) for d in re.findall(r"distance (\S+)", printed)]
+    assert len(distance) == 9 and all(a > b for a, b in zip(distance, distance[1:],
+                                                              strict=False))
+    slope = float(re.search(r"fitted slope (\S+) for k_c >= 1000", printed).group(1))
+    assert abs(slope + 0.5) < 0.05

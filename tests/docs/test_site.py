@@ -86,12 +86,12 @@ def gallery_copies(*args: str) -> set[str]:
 
 
 def test_make_figures_writes_the_gallery():
-    """Every gallery PNG is copied there by `make figures`, `make continuation` or `make
-    designs` at full resolution; QUICK=1 leaves the gallery alone."""
-    made = gallery_copies("figures", "continuation", "designs")
+    """Every gallery PNG is copied there by `make figures`, `make continuation`, `make
+    designs` or `make stiff-limit` at full resolution; QUICK=1 leaves the gallery alone."""
+    made = gallery_copies("figures", "continuation", "designs", "stiff-limit")
     shown = {p.name for p in (ROOT / "docs" / "gallery").glob("*.png")}
     assert shown <= made, sorted(shown - made)
-    assert not gallery_copies("figures", "QUICK=1")
+    assert not gallery_copies("figures", "stiff-limit", "QUICK=1")
 
 
 def test_every_gallery_figure_names_the_command_that_makes_it():
