@@ -134,9 +134,9 @@ ax.legend(loc="lower right", ncol=4, fontsize="small")
 # for three or more (`B1:P2^1 B2:P1-0^2 B3:P2-1^1`: each body on its own attractor, with
 # its shift), and `impacting P{p}` for a periodic solution in contact, as this one is. A
 # chain's trajectory carries no name (a trajectory builds no catalogue of its bodies'
-# attractors; the sweep kinds below do): the tool reports the outcome, the period in forcing periods and the
-# contacts on the orbit, as printed above (`softimpact plot trajectory` titles it
-# "converged: period 1 T").
+# attractors; the sweep kinds below do): the tool reports the outcome, the period in
+# forcing periods and the contacts on the orbit, as printed above (`softimpact plot
+# trajectory` titles it "converged: period 1 T").
 #
 # ## Basins and basin stability
 #
