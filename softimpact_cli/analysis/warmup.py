@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ..config import IntegratorSettings
-from ..kernels import METHODS, method_traits, orbit
+from ..kernels import IMPACT_ADVANCE, METHODS, method_traits, orbit
 from ..kernels.numba_cache import SAVES_LOCKED
 from ..systems import REGISTRY, System, get_system, variational
 from ..systems.chain import ChainModel, Kink, Stop, chain_system, chain_values
@@ -57,7 +57,9 @@ def _scene_kernels(model: str, bodies: int, method: str, catalogue: bool,
     ``method`` calls first: the trajectory kernels, the method, the system, and the
     catalogue's variational equations."""
     system = system if system is not None else get_system(model, bodies)
-    kernels = [orbit.classify_near, orbit.record, METHODS[method].advance, system.rhs]
+    advance = (IMPACT_ADVANCE if system.extra.get("rigid") else
+               {name: module.advance for name, module in METHODS.items()})[method]
+    kernels = [orbit.classify_near, orbit.record, advance, system.rhs]
     if catalogue and system.model != "chain":
         body = get_system(model, 1)
         kernels += [orbit.flow, body.rhs, variational.variational_rhs(body)]
@@ -152,6 +154,11 @@ def _steps(model: str | None = None) -> list:
             steps.append((f"chain: {method}", lambda m=method: run_system(chain, m)))
         steps.append(("chain: Lyapunov exponents (Benettin, saltation)",
                       lambda: run_lyapunov(chain)))
+        rigid = warmup_rigid_chain()  # each method wrapped in the impact loop
+        for method in METHODS:
+            if not method_traits(method).closed_form:  # a rigid stop is not linear
+                steps.append((f"chain with a rigid stop: {method}",
+                              lambda m=method: run_system(rigid, m)))
     for (name, bodies), system in sorted(REGISTRY.items()):
         if model is not None and name != model:
             continue
@@ -182,10 +189,22 @@ def warmup_chain() -> System:
     return chain_system(_WARMUP_CHAIN)
 
 
+# One body and a rigid wall (kernels/impacts.py): the impact loop of every method, which
+# classify, record and flow take as their advance (one compiled set for every rigid chain).
+_RIGID_CHAIN = ChainModel(1, stops=(Stop(1, side="right", law="rigid"),))
+_RIGID_VALUES = chain_values(_RIGID_CHAIN, 1.0, {}, stop_values=[{"wall": 0.4, "r": 0.8}])
+
+
+def warmup_rigid_chain() -> System:
+    return chain_system(_RIGID_CHAIN)
+
+
 def defaults_of(system: System) -> dict:
     """Parameter values to warm a system up with (a chain's have no defaults for its
     kinks' and stops' positions)."""
-    return dict(_WARMUP_VALUES) if system.model == "chain" else system.defaults()
+    if system.model != "chain":
+        return system.defaults()
+    return dict(_RIGID_VALUES if system.extra.get("rigid") else _WARMUP_VALUES)
 
 
 def _timed(what: str, run) -> Step:
