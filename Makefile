@@ -19,15 +19,16 @@ $(STAMP): pyproject.toml
 	$(PY) -m softimpact_cli.analysis.warmup
 	touch $(STAMP)
 
-# The whole suite on both cores (pytest-xdist): 5 min 27 s on 2 cores after the install
-# (2026-11-26; about 10 minutes serially, PYTEST_ARGS="-n 0"). The interrupt tests wait
+# The whole suite on both cores (pytest-xdist): 1532 tests in 10 min 25 s on 2 cores
+# after the install, which took 5 min 24 s (pip 39 s, kernels 285 s): 15 min 49 s in all
+# on a clean clone (2026-11-27, `.ci/run`). The interrupt tests wait
 # on events with generous deadlines, not on an idle machine; kernels a test compiles are
 # saved under a lock (kernels/numba_cache.py), so the two workers may compile at once.
 test: $(STAMP)
 	SOFTIMPACT_HYPOTHESIS=ci $(PY) -m pytest -n 2 $(PYTEST_ARGS)
 
-# The suite without the tests marked slow, on both cores: about 3.5 minutes (3 min 38 s,
-# 2026-11-26).
+# The suite without the tests marked slow, on both cores: about 6 minutes (1440 tests,
+# 723 s of CPU, 2026-11-27; benchmarks/pytest_cpu_per_test.py measures it per test).
 test-fast: $(STAMP)
 	$(PY) -m pytest -m "not slow" -n 2 $(PYTEST_ARGS)
 
