@@ -41,22 +41,30 @@ class BifurcationAnalysis:
     parameter: str = "d"
 
 
+def _read_range(sec, check, what: str) -> tuple[float, float, float]:
+    """``start``, ``stop``, ``step``: each end checked by ``check`` (a problem's text or
+    None; ``what`` says what the value is), the ends apart, at most MAX_STEPS steps."""
+    start = sec.number("start", None)
+    stop = sec.number("stop", None)
+    step = sec.number("step", None, positive)
+    for key, v in (("start", start), ("stop", stop)):
+        problem = check(v)
+        if problem:
+            raise sec.fail(key, f"{problem} ({what}), got {v!r}")
+    if start == stop:
+        raise sec.fail("stop", "must differ from start")
+    if abs(stop - start) / step > MAX_STEPS:
+        raise sec.fail("step", f"{abs(stop - start) / step:.0f} steps; at most {MAX_STEPS}")
+    return start, stop, step
+
+
 def _read_chain(sec, ctx) -> BifurcationAnalysis:
     """A chain: any parameter by its name (default the first stop's gap or wall)."""
     parameters = {p.name: p for p in ctx.system.parameters}
     stop_keys = [n for n in parameters if n.startswith("stop.1.")]
     parameter = sec.choice("parameter", stop_keys[0] if stop_keys else "w", tuple(parameters))
-    start = sec.number("start", None)
-    stop = sec.number("stop", None)
-    step = sec.number("step", None, positive)
-    for key, v in (("start", start), ("stop", stop)):
-        problem = parameters[parameter].check(v)
-        if problem:
-            raise sec.fail(key, f"{problem} (a value of {parameter}), got {v!r}")
-    if start == stop:
-        raise sec.fail("stop", "must differ from start")
-    if abs(stop - start) / step > MAX_STEPS:
-        raise sec.fail("step", f"{abs(stop - start) / step:.0f} steps; at most {MAX_STEPS}")
+    start, stop, step = _read_range(sec, parameters[parameter].check,
+                                    f"a value of {parameter}")
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
         raise sec.fail("branches", "must be a list of product names like "
@@ -73,18 +81,9 @@ def read(sec, ctx) -> BifurcationAnalysis:
                                f"body follows its solutions along parameter = one of "
                                f"{', '.join(allowed)}")
     parameter = sec.choice("parameter", "d", allowed)
-    start = sec.number("start", None)
-    stop = sec.number("stop", None)
-    step = sec.number("step", None, positive)
-    for key, v in (("start", start), ("stop", stop)):
-        problem = ctx.check_axis(parameter, v)
-        if problem:
-            what = "a distance d" if parameter == "d" else f"a value of {parameter}"
-            raise sec.fail(key, f"{problem} ({what}), got {v!r}")
-    if start == stop:
-        raise sec.fail("stop", "must differ from start")
-    if abs(stop - start) / step > MAX_STEPS:
-        raise sec.fail("step", f"{abs(stop - start) / step:.0f} steps; at most {MAX_STEPS}")
+    start, stop, step = _read_range(
+        sec, lambda v: ctx.check_axis(parameter, v),
+        "a distance d" if parameter == "d" else f"a value of {parameter}")
     raw = sec.raw("branches", [])
     if not isinstance(raw, list) or not all(isinstance(b, str) for b in raw):
         raise sec.fail("branches", f"must be a list of names like 'L1^1 R1-0^2', got {raw!r}")

@@ -130,3 +130,22 @@ def test_continuation_follows_any_model_parameter_as_the_grid_does():
     x, v = ds["state"].values.T
     exact = 1.0 / np.sqrt((1.0 - 0.81) ** 2 + (c * 0.9) ** 2)
     np.testing.assert_allclose(np.hypot(x, v / 0.9), exact, rtol=1e-8)
+
+
+PAIR_RANGE = ('[system]\nmodel = "duffing"\n[analysis]\nkind = "bifurcation"\n'
+              "start = {start}\nstop = {stop}\nstep = {step}\n")
+CHAIN_RANGE = ('[system]\nmodel = "chain"\nbodies = 2\n[[stop]]\nbetween = [1, 2]\nd = 5.0\n'
+               '[analysis]\nkind = "bifurcation"\nparameter = "stop.1.d"\n'
+               "start = {start}\nstop = {stop}\nstep = {step}\n")
+
+
+@pytest.mark.parametrize("text", [PAIR_RANGE, CHAIN_RANGE], ids=["pair", "chain"])
+@pytest.mark.parametrize("start, stop, step, message", [
+    (8.0, 8.0, 1.0, "[analysis] stop: must differ from start"),
+    (8.0, 9.0, 1e-6, "[analysis] step: 1000000 steps; at most"),
+    (8.0, 9.0, -1.0, "[analysis] step: must be > 0"),
+])
+def test_a_bad_range_is_one_line_for_a_preset_and_a_chain(text, start, stop, step, message):
+    with pytest.raises(ConfigError) as err:
+        parse_scene(text.format(start=start, stop=stop, step=step), "b.toml")
+    assert str(err.value).startswith(f"b.toml: {message}") and "\n" not in str(err.value)
