@@ -481,6 +481,33 @@ def _curve(problem: Problem, start: np.ndarray, t0: float, period: int, sign: fl
     return sign * traj.y[: period * CURVE_SAMPLES]
 
 
+def attractor_variables(attractors, pts: np.ndarray, curves: np.ndarray,
+                        mult: np.ndarray) -> dict:
+    """The per-attractor variables of a catalogue's Dataset (one body's attractors, or a
+    chain's bodies' in a row): period, amplitude, search share, residual, section points
+    ``pts`` (attractor, point, 2), dense curves ``curves`` (attractor, sample, 2) and the
+    Floquet multipliers ``mult`` (attractor, 2), complex."""
+    return {
+        "attractor_period": (("attractor",), [a.period for a in attractors],
+                             {"long_name": "period", "units": "forcing periods"}),
+        "attractor_amplitude": (("attractor",), [a.amplitude for a in attractors],
+                                {"long_name": "max |x| over the orbit", "units": "1"}),
+        SEARCH_SHARE: (("attractor",), [a.share for a in attractors],
+                       {"long_name": SEARCH_SHARE_TEXT, "units": "1"}),
+        "attractor_residual": (("attractor",), [a.residual for a in attractors],
+                               {"long_name": "|P^p(x) - x| after Newton", "units": "1"}),
+        "attractor_points": (("attractor", "point", "body_variable"), pts,
+                             {"long_name": "section points at t = nT, canonical order",
+                              "units": "1"}),
+        "attractor_curve": (("attractor", "curve_sample", "body_variable"), curves,
+                            {"long_name": "dense orbit from point 0 at t = 0", "units": "1"}),
+        "multiplier_re": (("attractor", "multiplier"), mult.real,
+                          {"long_name": "Floquet multiplier, real part", "units": "1"}),
+        "multiplier_im": (("attractor", "multiplier"), mult.imag,
+                          {"long_name": "Floquet multiplier, imaginary part", "units": "1"}),
+    }
+
+
 def catalogue_dataset(cat: Catalogue, system: System, integrator: IntegratorSettings):
     """The catalogue as an xarray Dataset (attractors, right body, combinations, curves)."""
     import xarray as xr
@@ -499,23 +526,7 @@ def catalogue_dataset(cat: Catalogue, system: System, integrator: IntegratorSett
         mult[i, : a.multipliers.size] = a.multipliers
     data = {
         "attractor_name": (("attractor",), [a.name for a in cat.attractors]),
-        "attractor_period": (("attractor",), [a.period for a in cat.attractors],
-                             {"long_name": "period", "units": "forcing periods"}),
-        "attractor_amplitude": (("attractor",), [a.amplitude for a in cat.attractors],
-                                {"long_name": "max |x| over the orbit", "units": "1"}),
-        SEARCH_SHARE: (("attractor",), [a.share for a in cat.attractors],
-                       {"long_name": SEARCH_SHARE_TEXT, "units": "1"}),
-        "attractor_residual": (("attractor",), [a.residual for a in cat.attractors],
-                               {"long_name": "|P^p(x) - x| after Newton", "units": "1"}),
-        "attractor_points": (("attractor", "point", "body_variable"), pts,
-                             {"long_name": "section points at t = nT, canonical order",
-                              "units": "1"}),
-        "attractor_curve": (("attractor", "curve_sample", "body_variable"), curves,
-                            {"long_name": "dense orbit from point 0 at t = 0", "units": "1"}),
-        "multiplier_re": (("attractor", "multiplier"), mult.real,
-                          {"long_name": "Floquet multiplier, real part", "units": "1"}),
-        "multiplier_im": (("attractor", "multiplier"), mult.imag,
-                          {"long_name": "Floquet multiplier, imaginary part", "units": "1"}),
+        **attractor_variables(cat.attractors, pts, curves, mult),
     }
     coords = {
         "attractor": np.array([a.number for a in cat.attractors], dtype=np.int64),
