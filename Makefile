@@ -19,9 +19,9 @@ $(STAMP): pyproject.toml
 	$(PY) -m softimpact_cli.analysis.warmup
 	touch $(STAMP)
 
-# The whole suite on both cores (pytest-xdist): 1532 tests in 10 min 25 s on 2 cores
-# after the install, which took 5 min 24 s (pip 39 s, kernels 285 s): 15 min 49 s in all
-# on a clean clone (2026-11-27, `.ci/run`). The interrupt tests wait
+# The whole suite on both cores (pytest-xdist): 1533 tests in 8 min 48 s on 2 cores
+# after the install (pip, then kernels compiled in 336 s): 15 min 4 s in all on a clean
+# clone (2026-11-27, `.ci/run` with empty caches). The interrupt tests wait
 # on events with generous deadlines, not on an idle machine; kernels a test compiles are
 # saved under a lock (kernels/numba_cache.py), so the two workers may compile at once.
 test: $(STAMP)
