@@ -128,6 +128,14 @@ def code_version() -> str:
     return f"commit {head}" + (" with uncommitted changes in softimpact_cli" if dirty else "")
 
 
+def write_report(path: str, lines: list[str]) -> None:
+    """Write a benchmark's markdown ``lines`` to ``path`` (its folder made) and print them."""
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text("\n".join(lines))
+    print("\n".join(lines))
+
+
 def fmt_time(s: float) -> str:
     """Seconds as '12.3 s', '4.5 min' or '1.2 h'."""
     if s < 120:

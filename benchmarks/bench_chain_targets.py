@@ -35,7 +35,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _common import ROOT, WORKERS, load, machine
+from _common import ROOT, WORKERS, load, machine, write_report
 from bench_chain import (
     AUTO,
     FIG6D,
@@ -276,10 +276,7 @@ def main(argv=None) -> int:
              f"at start {start_load}, at end {load()} (a shared machine: CPU seconds where "
              "given).", "", "| target | measured | verdict |", "|---|---|---|",
              *[f"| {t} | {m} | {v} |" for t, m, v in rows], ""]
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines))
-    print("\n".join(lines))
+    write_report(args.out, lines)
     return 0
 
 

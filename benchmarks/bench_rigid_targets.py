@@ -22,10 +22,9 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import ROOT, load, machine
+from _common import ROOT, load, machine, write_report
 
 from softimpact_cli.analysis.engine import Problem, classify_state
 from softimpact_cli.kinds.scene import parse_scene
@@ -97,10 +96,7 @@ def main(argv=None) -> int:
              f"at start {start_load}, at end {load()} (a shared machine: CPU seconds).", "",
              "| target | measured | verdict |", "|---|---|---|",
              *[f"| {t} | {m} | {v} |" for t, m, v in rows], ""]
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines))
-    print("\n".join(lines))
+    write_report(args.out, lines)
     return 0
 
 

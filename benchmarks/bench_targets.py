@@ -39,6 +39,7 @@ from _common import (
     sample_points,
     stability_scene,
     tight_reference,
+    write_report,
 )
 from bench_basin import timed_pool
 from scipy_contestant import scipy_label
@@ -239,10 +240,7 @@ def main(argv=None) -> int:
              "also the tolerance pilot, the verification and any redo it made (what "
              "`softimpact sweep` does), the rows below them what those took.", "",
              f"Integrator cost: {floor}", ""]
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines))
-    print("\n".join(lines))
+    write_report(args.out, lines)
     return 0
 
 
