@@ -33,7 +33,7 @@ from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
 from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, chunk_size_for
-from .result import sweep_dataset
+from .result import point_survival, sweep_dataset
 from .second_stage import progress_codes, relabel, unpack
 
 
@@ -70,8 +70,8 @@ def chain_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ...]
     """:func:`prepare_catalogues` of a chain: its bodies searched (through the catalogue
     cache) once per distinct value of the axes a body's attractors depend on
     (``catalogue_axes``: not the stops'), with the products' critical values; which
-    survive is said at the first grid point of each (``ChainCatalogue.survives``; the
-    labels do not depend on it)."""
+    survive at each grid point is the result's ``combination_survives``
+    (``result.point_survival``; the labels do not depend on it)."""
     system = scene.system
     catalogues = {}
     for values in catalogue_points(scene):
@@ -206,6 +206,8 @@ def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: di
         ds = after(ds, scene, inputs.first)
     catalogue_vars = catalogue_table(inputs.first, scene.system, scene.integrator)
     ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
+    if scene.system.model == CHAIN:  # which products survive depends on each point's stops
+        ds = point_survival(ds, scene.system, dict(scene.values), inputs.catalogues)
     ds.attrs["catalogue_source"] = inputs.first.source  # "computed" or "cache <key>"
     # the search's own counts (the merge keeps the sweep's attrs): report/outcomes.py
     ds.attrs["catalogue_n_samples"] = inputs.first.n_samples
