@@ -108,9 +108,10 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
     (``analysis.critical_distance``); which of them exist depends on d, decided per grid
     point by ``SweepContext.known_orbits``.
     """
-    if scene.integrator.capture_tol <= 0.0 or scene.system.model == CHAIN:
-        return None  # a chain: capture by known orbits is not written for its stops yet
-
+    if scene.integrator.capture_tol <= 0.0:
+        return None
+    if scene.system.model == CHAIN:  # each stop's critical values, not a pair's d_crit
+        return chain_capturable_orbits(catalogues)
     check_bodies(scene.system.bodies, "capturable_orbits (d_crit of a pair's x1 - x2 - d)")
     axes = catalogue_axes(scene.system)
     known = {}
@@ -123,6 +124,17 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
         known[key] = [(c.orbit, critical_distance(problem, c.orbit[0], len(c.orbit), 256)[0])
                       for c in cat.combinations if c.left.stable and c.right.stable]
     return known
+
+
+def chain_capturable_orbits(catalogues: dict) -> dict:
+    """:func:`capturable_orbits` of a chain: per catalogue key, its stable products (every
+    body on a stable attractor: with no stop touched the bodies are uncoupled, so the
+    product is a stable orbit of the chain), each as (joint section points (q, 2n),
+    critical values (n_stops,)); which exist at a grid point follows from its stops
+    (``SweepContext.known_orbits``)."""
+    return {key: [(p.orbit, row) for p, row in zip(cat.products, cat.critical, strict=True)
+                  if all(a.stable for a in p.attractors)]
+            for key, cat in catalogues.items()}
 
 
 def sweep_context(scene: Scene, catalogues: dict, names: tuple[str, ...],

@@ -334,3 +334,31 @@ def test_each_gap_of_a_chain_sweep_stores_its_own_surviving_products(tmp_path):
     text = format_summary(describe(ds), ds)
     assert "surviving at stop.1.d=4, t0=0 (1): L1^1 R1-0^1" in text
     assert "surviving at stop.1.d=6.5, t0=0 (3): " in text
+
+
+def test_capture_by_known_products_keeps_a_chains_labels(tmp_path):
+    """Capture by known orbits on a chain (the stable products each point's stops leave,
+    by CAPTURE_MARGIN capture radii): over stop.1.d = [4, 6.5] the labels, statuses and
+    periods are those of the same sweep with capture off, some starts are captured,
+    and only where that point's catalogue says the product survives."""
+    grid = "\n[grid]\nstop.1.d = [4.0, 6.5]\n"
+    captured = run_sweep(parse_scene(GAPS + grid), tmp_path / "c.h5", workers=1)
+    plain = run_sweep(parse_scene(GAPS + grid + "\n[integrator]\ncapture_tol = 0.0\n"),
+                      tmp_path / "p.h5", workers=1)
+    assert list(captured["label_name"].values) == list(plain["label_name"].values)
+    for var in ("label", "status", "period"):
+        np.testing.assert_array_equal(captured[var].values, plain[var].values)
+    how = captured["captured"].values
+    assert np.sum(how == 1) > 0 and np.sum(plain["captured"].values == 1) == 0
+    names = dict(zip(captured["label_code"].values.tolist(),
+                     (str(n) for n in captured["label_name"].values), strict=True))
+    survives = captured["combination_survives"].squeeze(drop=True)
+    products = [str(n) for n in captured["combination_name"].values]
+    for i in range(2):
+        alive = {n for n, ok in zip(products, survives.isel({"stop.1.d": i}).values,
+                                    strict=True) if ok}
+        at = captured.isel({"stop.1.d": i})
+        for code, how_i in zip(at["label"].values.ravel(), at["captured"].values.ravel(),
+                               strict=True):
+            if how_i == 1:
+                assert names[int(code)] in alive
