@@ -132,13 +132,6 @@ def test_example_chain_prints_the_commented_scene():
 
 
 @pytest.mark.parametrize("kind, extra, message", [
-    ("design", "", "[analysis] kind = 'design': not yet for model = \"chain\" (it searches "
-                   "a pair's (d, phi) plane of critical distances; a chain's region over its "
-                   "stops and phases is not built yet: kind \"map\" gives which products "
-                   "survive over two parameters, kind \"stability\" a point's basin "
-                   "stability); a chain runs kind 'trajectory' or 'lyapunov' or 'dcrit' or "
-                   "'bifurcation' or 'catalogue' or 'basins' or 'stability' or 'map' or "
-                   "'continuation' or 'fractality' or 'fatal_shock' or 'tipping'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
                   "curves from a pair's combinations and follows them in (d, phi)"),
     ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
