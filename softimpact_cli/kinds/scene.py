@@ -50,8 +50,13 @@ CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "b
                "stability", "map", "continuation", "fractality", "fatal_shock", "tipping",
                "design")
 CHAIN_REFUSALS = {
-    "atlas": ("it seeds its curves from a pair's combinations and follows them in "
-              "(d, phi); on a chain kind \"dcrit\" gives each stop's critical values"),
+    "atlas": ("it seeds its bifurcation curves from a pair's combinations and continues "
+              "them in two of the pair's parameters; on a chain, kind \"continuation\" "
+              "finds the folds, period doublings and Neimark-Sacker points of its orbits "
+              "along any one parameter by name, kind \"dcrit\" where a stop starts to touch "
+              "each non-impacting product (its grazing) against any parameter, kind "
+              "\"design\" where only one product survives, and kind \"map\" which "
+              "attractors coexist over two parameters"),
 }
 
 
@@ -71,10 +76,6 @@ def chain_refusal(kind: str, doc: dict) -> str | None:
         return ("not yet with a rigid stop: its monodromy needs the saltation matrix of the "
                 "impact's reset, which the shooting's variational kernel does not apply yet "
                 "(kinds trajectory, basins, dcrit and bifurcation run)")
-    if kind == "lyapunov" and (doc.get("analysis", {}).get("start") == "catalogue"
-                               or "grid" in doc):
-        return ("on a chain only from a state (start = \"state\", no [grid]): its start "
-                "from the catalogue and its grid axes are written for the presets")
     return None
 
 

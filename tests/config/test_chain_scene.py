@@ -133,9 +133,13 @@ def test_example_chain_prints_the_commented_scene():
 
 @pytest.mark.parametrize("kind, extra, message", [
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
-                  "curves from a pair's combinations and follows them in (d, phi)"),
-    ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
-                                          "a state"),
+                  "bifurcation curves from a pair's combinations and continues them in two of "
+                  "the pair's parameters; on a chain, kind \"continuation\" finds the folds, "
+                  "period doublings and Neimark-Sacker points of its orbits along any one "
+                  "parameter by name, kind \"dcrit\" where a stop starts to touch each "
+                  "non-impacting product (its grazing) against any parameter, kind "
+                  "\"design\" where only one product survives, and kind \"map\" which "
+                  "attractors coexist over two parameters); a chain runs kind 'trajectory'"),
 ])
 def test_kinds_a_chain_cannot_run_yet_are_refused_in_one_line(kind, extra, message):
     with pytest.raises(ConfigError) as err:
