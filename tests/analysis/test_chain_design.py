@@ -151,3 +151,44 @@ def test_margins_are_the_distances_to_where_the_survivors_change(chain):
             min(d1 - cat.critical[target, 0], d2 - cat.critical[target, 1]), abs=1e-12)
         assert m["relative"] == pytest.approx(
             min(min(edges[0:2]) / d1, min(edges[2:4]) / d2), abs=6e-4)
+
+
+WALL = CHAIN.replace("[[stop]]\nbetween = [2, 3]\nd = 5.0",
+                     '[[stop]]\nbody = 3\nwall = -3.0\nside = "left"')
+
+
+def test_a_left_wall_bounds_the_region_from_above_by_integration():
+    """A left wall (contact while x3 <= wall) destroys a product when the wall rises above
+    its min x3: the region in the wall's position is the mirror of a gap's, checked by
+    integration of the coupled chain."""
+    scene = parse_scene(WALL, "wall.toml")
+    at = catalogues(scene)
+    s = settings({"stop.1.d": (1.0, 10.0), "stop.2.wall": (-8.0, -0.5)})
+    region = build_region(scene.system, scene.values, s, at)
+    assert list(region.signs) == [1.0, -1.0]
+    cat = at({})
+    seen = {True: 0, False: 0}
+    for d1 in (3.4, 4.3, 6.4):
+        for wall in (-1.0, -2.0, -2.8, -4.0, -6.0):
+            point = {"stop.1.d": d1, "stop.2.wall": wall}
+            critical = region.critical[0]
+            if np.any(np.abs(critical[:, 0] - d1) < 0.05) or \
+                    np.any(np.abs(critical[:, 1] - wall) < 0.05):
+                continue
+            values = {**scene.values, **point}
+            coupled = Problem(scene.system, values, scene.integrator)
+            survivors, orbits = set(), {}
+            for p in cat.products:
+                y = orbits[p.name] = record_trajectory(coupled, p.orbit[0], 0.0, 2, 2048).y
+                if (y[:, 0] - y[:, 2] < d1).all() and (y[:, 4] > wall).all():
+                    survivors.add(p.name)
+            alone = region.alone(critical, region.stop_vector(point))
+            assert alone == (survivors == {TARGET}), (point, survivors)
+            seen[alone] += 1
+            m = region.margins(critical, point)
+            if alone:  # the target's clearance: the wall below its min x3, d1 above
+                lowest = orbits[TARGET][:, 4].min()
+                assert m["d_to_target"] == pytest.approx(
+                    min(lowest - wall, d1 - (orbits[TARGET][:, 0]
+                                             - orbits[TARGET][:, 2]).max()), abs=2e-3)
+    assert seen[True] >= 1 and seen[False] >= 3
