@@ -11,7 +11,7 @@ import pytest
 
 from softimpact_cli.analysis.catalogue import sample_states
 from softimpact_cli.analysis.chain_catalogue import build_chain_catalogue, survival
-from softimpact_cli.analysis.chain_design import build_region
+from softimpact_cli.analysis.chain_region import build_region
 from softimpact_cli.analysis.engine import Problem, record_trajectory
 from softimpact_cli.kinds.design_settings import DesignAnalysis
 from softimpact_cli.kinds.scene import parse_scene
