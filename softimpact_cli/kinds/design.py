@@ -45,7 +45,10 @@ def sections(analysis, ctx) -> Sections:
     if ic_kind != "random":
         raise ConfigError(f"{source}: [initial_conditions] kind: a design's basin "
                           f"stability needs kind = \"random\", got {ic_kind!r}")
-    initial = read_initial_conditions(source, doc, ctx.system.state_names, ctx.period, False)
+    # a chain's design may move w: one start time would be another phase at each point
+    w_moves = "w" in analysis.bounds and ctx.system.model == CHAIN
+    initial = read_initial_conditions(source, doc, ctx.system.state_names, ctx.period,
+                                      False, w_swept=w_moves)
     for key in ("screen_n", "robust_n"):
         if (getattr(analysis, key) or 0) > initial.count:
             raise ConfigError(f"{source}: [analysis] {key}: must be <= [initial_conditions]"

@@ -199,8 +199,12 @@ def _chain_plane(ax, ds, s: dict) -> None:
     ax.plot(px[i], py[i], "*", color="#d62728", mec="k", ms=16, zorder=5, label="pick")
     ax.fill_between([], [], color=REGION, label=f"only {latex_of(s['target'])} survives")
     ax.set_xlabel(x_axis)
+    if x_axis.startswith("phi."):
+        pi_ticks(ax.xaxis, *ax.get_xlim(), max_ticks=7)
     if y_axis:
         ax.set_ylabel(y_axis)
+        if y_axis.startswith("phi."):
+            pi_ticks(ax.yaxis, *ax.get_ylim(), max_ticks=7)
     else:
         ax.set_yticks([])
     others = [a for a in design_axes(ds) if a not in (x_axis, y_axis)]

@@ -84,6 +84,14 @@ def test_too_many_body_grid_points_are_refused():
         parse_scene(scene.replace("candidates = 4", "candidates = 4\ngrid_points = 30"))
 
 
+def test_a_random_start_time_is_refused_when_the_design_moves_w():
+    scene = DESIGN.replace('"stop.1.k_c" = [4.0, 12.0]', 'w = [1.3, 1.5]').replace(
+        "seed = 3\n", 'seed = 3\nt0 = "random"\n')
+    with pytest.raises(ConfigError, match=r"\[initial_conditions\] t0: cannot be set while "
+                                          r"w is swept"):
+        parse_scene(scene, "s.toml")
+
+
 def test_a_phase_axis_reads_multiples_of_pi():
     scene = parse_scene(DESIGN.replace('"stop.1.k_c" = [4.0, 12.0]', 'phi.3 = ["pi", "2*pi"]'))
     assert scene.analysis.bounds["phi.3"] == pytest.approx((np.pi, 2 * np.pi))
