@@ -110,6 +110,7 @@ def test_along_a_phase_the_region_follows_the_products_by_integration(chain):
     assert region.shape == (3,) and np.allclose(region.grid[:, 0], [0.5 * np.pi,
                                                                     0.75 * np.pi, np.pi])
     checked = agree_alone = 0
+    brute = {}  # (grid index, d1) -> only the target survives, by integration
     for g, (phi2,) in enumerate(region.grid):
         cat = at({"phi.2": float(phi2)})
         for d1 in (2.6, 3.5, 4.4, 5.5, 7.0):
@@ -119,9 +120,23 @@ def test_along_a_phase_the_region_follows_the_products_by_integration(chain):
             alone = region.alone(region.critical[g], region.stop_vector(point))
             survivors = brute_survivors(chain, cat, {**chain.values, **point})
             assert alone == (survivors == {TARGET}), (point, survivors)
+            brute[g, d1] = survivors == {TARGET}
             checked += 1
             agree_alone += alone
     assert checked >= 10 and agree_alone >= 1
+    # the phase margin of a point alone: to the nearest grid phase where integration saw
+    # another survivor or the target destroyed, less half a step, over pi
+    phis, step, compared = region.grid[:, 0], np.pi / 4, 0
+    for (g, d1), alone in brute.items():
+        line = [brute.get((k, d1)) for k in range(3)]
+        if not alone or None in line:
+            continue
+        outside = [abs(phis[g] - phis[k]) for k in range(3) if not line[k]]
+        expected = (min(outside) - step / 2) / np.pi if outside else (phis[-1] - phis[0]) / np.pi
+        m = region.margins(region.critical[g], {"phi.2": float(phis[g]), "stop.1.d": d1})
+        assert m["body_to_boundary"] == pytest.approx(expected, abs=1e-12), (g, d1)
+        compared += 1
+    assert compared >= 1
 
 
 def test_margins_are_the_distances_to_where_the_survivors_change(chain):

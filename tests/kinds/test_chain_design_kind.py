@@ -131,6 +131,11 @@ def test_the_pick_keeps_only_the_target_by_integration(chain_design):
     assert ds["n_samples"].values[0] == 8
     assert ds["map_target"].dims == ("map_y", "map_x")
     assert ds.attrs["map_x_axis"] == "stop.1.d" and ds.attrs["map_y_axis"] == "stop.2.d"
+    # the figure's map, at the cell nearest the pick: only the target survives there
+    i = int(np.argmin(np.abs(ds["map_x"].values - best["stop.1.d"])))
+    j = int(np.argmin(np.abs(ds["map_y"].values - best["stop.2.d"])))
+    assert ds["map_survivors"].values[j, i] == 1 and ds["map_target"].values[j, i] == 1
+    assert (ds["map_survivors"].values[0] >= 0).all() and ds["map_target"].values.sum() > 1
 
 
 def test_the_chain_design_is_described_and_drawn(chain_design):
