@@ -175,6 +175,9 @@ class Classification:
     counters: dict[str, int]
     captured: int = NO_ORBIT  # index of the known orbit that captured it
     cell_code: int = MIXED_CELL  # label code taken from recurrence cells (orbit unknown)
+    # the impact loop's counters over the whole integration (``impact_counters``); empty
+    # for a system without rigid stops
+    impacts: dict[str, int] = field(default_factory=dict)
 
     @property
     def outcome(self) -> str:
@@ -215,6 +218,7 @@ def classify_state(problem: Problem, state, t0: float = 0.0,
         orbit=out.orbit[:q].copy(), contacts=int(out.contacts),
         max_penetration=float(out.max_g), counters=counter_dict(out.counters),
         captured=int(out.captured), cell_code=int(out.cell_code),
+        impacts=impact_counters(out.counters) if problem.system.extra.get("rigid") else {},
     )
 
 

@@ -22,6 +22,9 @@ from ..sweep.result import grid_axes, grid_dims, grid_point  # noqa: F401  (name
 from .nonperiodic import nonperiodic_summary
 from .verification import verification_summary
 
+# a rigid result's per-trajectory counters, variables ``rigid_<name>`` (sweep.chunks)
+RIGID_COUNTERS = ("impacts", "chatter_sequences", "sticking_phases")
+
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "catalogue_source", "t0_mode",
     "analysis", "model", "bodies", "parameters", "outcome", "label", "status_message",
@@ -222,6 +225,12 @@ def sweep_summary(ds) -> dict:
         point["counts"] = {table[int(v)]: int(c) for v, c in zip(values, counts, strict=True)}
         point["fractions"] = {table[int(v)]: c / n for v, c in zip(values, counts, strict=True)}
         points.append(point)
+    if "rigid_impacts" in ds:  # a system with rigid stops: per label and point, and totals
+        period, contacts = (ds[k].transpose(*grid_dims(ds), *ic_dims).values.reshape(flat.shape)
+                            for k in ("period", "contacts"))
+        for k, point in enumerate(points):
+            point["impacts_per_period"] = impacts_per_period(flat[k], period[k], contacts[k],
+                                                             table)
     status = {}
     if "status" in ds:  # (a result made by hand may hold labels only: no totals then)
         totals = {"converged": 0, "unresolved": 0, "diverged": 0}
@@ -243,6 +252,11 @@ def sweep_summary(ds) -> dict:
         how = ds["captured"].values
         out["classified_by"] = {name: int(np.sum(how == code))
                                 for code, name in CLASSIFIED_BY.items()}
+    if "rigid_impacts" in ds:
+        out["impacts_per_period"] = impacts_per_period(flat.ravel(), period.ravel(),
+                                                       contacts.ravel(), table)
+        out["rigid_counts"] = {name: int(ds[f"rigid_{name}"].values.sum(dtype=np.int64))
+                               for name in RIGID_COUNTERS}
     if "steps" in ds:
         stiff = int(ds["stiff_steps"].values.sum())
         out["steps_by_method"] = {_first_method(ds): int(ds["steps"].values.sum()) - stiff,
@@ -252,6 +266,21 @@ def sweep_summary(ds) -> dict:
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),
             "labels": {str(c): n for c, n in table.items()},
             "points": points, **status}
+
+
+def impacts_per_period(label: np.ndarray, period: np.ndarray, contacts: np.ndarray,
+                       table: dict[int, str]) -> dict[str, list[float]]:
+    """{label name: its impacts per forcing period} of the trajectories on an impacting
+    periodic orbit (period > 0, contacts > 0), from their final orbit's count (``contacts``)
+    over its period; the distinct values, ascending (one unless a name covers several
+    orbits). Arrays: one value per trajectory, same shape."""
+    keep = (period > 0) & (contacts > 0)
+    out = {}
+    for code in np.unique(label[keep]):
+        chosen = keep & (label == code)
+        ratios = np.unique(contacts[chosen] / period[chosen].astype(float))
+        out[table[int(code)]] = [float(v) for v in ratios]
+    return out
 
 
 def unresolved_then_named(ds) -> dict | None:

@@ -60,6 +60,13 @@ def _status_text(totals: dict, then: dict) -> str:
                      for key, count in totals.items())
 
 
+def per_period_text(per_label: dict[str, list[float]]) -> str:
+    """A rigid result's impacts per period, "impacting P1 1, impacting P2 1.5" (several
+    values of one name joined by "or")."""
+    return ", ".join(f"{name} {' or '.join(f'{v:g}' for v in values)}"
+                     for name, values in per_label.items())
+
+
 def _is_number(v: str) -> bool:
     try:
         float(v)
@@ -100,6 +107,8 @@ def format_summary(summary: dict, ds, max_points: int = 50, kind=None) -> str:
             value = f"{value:.2f} s" if isinstance(value, float) else value
         elif key == "status" and "status_unresolved" in summary:
             value = _status_text(value, summary["status_unresolved"])
+        elif key == "impacts_per_period":  # a rigid result's, per impacting label
+            value = per_period_text(value) or "none"
         elif key == "steps_by_method" and all(isinstance(v, dict) for v in value.values()):
             value = "; ".join(f"{phase}: {text(v)}" for phase, v in value.items())  # per phase
         lines.append(f"{key:28s} {text(value)}")
@@ -176,6 +185,8 @@ def _point_table(points: list[dict], max_points: int) -> list[str]:
     out = [f"grid points ({len(points)}): share of initial conditions per label"]
     for point in points[:max_points]:
         shares = ", ".join(f"{n} {f:.3f}" for n, f in sorted(point["fractions"].items()))
+        if point.get("impacts_per_period"):  # a rigid result's impacting labels
+            shares += f"; impacts per period: {per_period_text(point['impacts_per_period'])}"
         counted = (f"; predicted {point['predicted']}, found {point['found']} "
                    f"({point['found_nonimpacting']} non-impacting)"
                    if "predicted" in point else "")

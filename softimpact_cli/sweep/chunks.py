@@ -13,7 +13,13 @@ import numpy as np
 from ..analysis.catalogue import Catalogue, label_orbit
 from ..analysis.chain_catalogue import stop_values
 from ..analysis.chain_dcrit import stop_coefficients
-from ..analysis.engine import KnownOrbits, Problem, RecurrenceCells, classify_state
+from ..analysis.engine import (
+    IMPACT_COUNTERS,
+    KnownOrbits,
+    Problem,
+    RecurrenceCells,
+    classify_state,
+)
 from ..analysis.impacting import ImpactingOrbits
 from ..analysis.labels import code_of
 from ..analysis.section_follow import FAILED, PERIODIC, RECURRENT, KnownSets, follow_section
@@ -51,6 +57,17 @@ RESULT_FIELDS = {  # name -> dtype of the per-trajectory arrays a chunk returns
     "steps": np.int32,
     "stiff_steps": np.int32,
 }
+# and, for a system with rigid stops only, the impact loop's counters of each trajectory's
+# first pass (engine.IMPACT_COUNTERS, from its start to its classification: the second
+# stage's integration is not counted, as for ``steps``). The kernels' classification does
+# not return the time stuck (fstate), only these istate counters.
+RIGID_FIELDS = {f"rigid_{name}": np.int32 for name in IMPACT_COUNTERS}
+
+
+def result_fields(system: System) -> dict:
+    """{name: dtype} of the per-trajectory arrays a sweep of ``system`` returns:
+    RESULT_FIELDS, and RIGID_FIELDS when it has rigid stops."""
+    return {**RESULT_FIELDS, **RIGID_FIELDS} if system.extra.get("rigid") else RESULT_FIELDS
 
 
 @dataclass(frozen=True)
@@ -148,7 +165,7 @@ def _orbit_code(orbit: np.ndarray, is_impacting: bool, point: int, catalogue: Ca
 def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     """Classify and label flat indices [start, stop).
 
-    Returns per-trajectory arrays (RESULT_FIELDS) and ``orbits``: for each (grid point,
+    Returns per-trajectory arrays (``result_fields``) and ``orbits``: for each (grid point,
     label code) first seen in this chunk, (flat index, section points (q, dim)). Distinct
     impacting orbits of one period at one point take distinct codes, numbered in this
     chunk's order (``analysis.impacting``; the parent renumbers them over the result). With
@@ -166,9 +183,9 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
     only.
     """
     n = stop - start
-    out = {k: np.zeros(n, dtype=t) for k, t in RESULT_FIELDS.items()}
-    orbits: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     system = ctx.system()
+    out = {k: np.zeros(n, dtype=t) for k, t in result_fields(system).items()}
+    orbits: dict[tuple[int, int], tuple[int, np.ndarray]] = {}
     n_ic = ctx.states.shape[0]
     s = ctx.integrator
     problem = None
@@ -243,6 +260,8 @@ def run_chunk(ctx: SweepContext, start: int, stop: int) -> dict:
         out["captured"][k] = how
         out["steps"][k] = cls.counters["steps"]
         out["stiff_steps"][k] = cls.counters["stiff_steps"]
+        for name, value in cls.impacts.items():  # a system with rigid stops only
+            out[f"rigid_{name}"][k] = value
     out["orbits"] = orbits
     out.update(pack(recurrent, ctx.states.shape[1]))
     return out

@@ -20,7 +20,7 @@ from ..config import Scene
 from ..config.axes import GRID_AXES
 from ..config.sweep import Grid, InitialConditions
 from ..store.provenance import history_line, provenance
-from .chunks import RESULT_FIELDS
+from .chunks import result_fields
 from .executors import make_executor
 from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, SweepSettings, chunk_size_for
@@ -49,7 +49,8 @@ def sweep_in_memory(scene: Scene, workers: int | None = None, scheduler: str | N
     echo(plan.describe())
     echo(f"executor: {executor.describe()}")
     inputs = prepare_inputs(scene, echo)
-    arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
+    arrays = {k: np.empty(plan.n_total, dtype=t)
+              for k, t in result_fields(scene.system).items()}
     orbits: dict = {}
     recurrent: list = []
     numbering = impacting_numbering(inputs.context)

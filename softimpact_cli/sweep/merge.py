@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..analysis.engine import Problem
 from ..analysis.impacting import ImpactingOrbits
-from .chunks import RESULT_FIELDS, SweepContext
+from .chunks import SweepContext
 
 
 def keep_first_orbits(orbits: dict, found: dict) -> None:
@@ -29,8 +29,9 @@ def impacting_numbering(context: SweepContext) -> ImpactingOrbits:
 def merge_chunk(arrays: dict, orbits: dict, numbering: ImpactingOrbits, context: SweepContext,
                 start: int, stop: int, chunk: dict) -> None:
     """A chunk's arrays into the result's flat ``arrays`` and its orbits into ``orbits``,
-    its impacting orbits renumbered over the result. Chunks in flat order."""
-    for key in RESULT_FIELDS:
+    its impacting orbits renumbered over the result. Chunks in flat order. ``arrays``
+    holds the fields of the sweep's system (``chunks.result_fields``)."""
+    for key in arrays:
         arrays[key][start:stop] = chunk[key]
     found = numbering.merge_chunk(arrays["label"][start:stop], start,
                                   context.states.shape[0], chunk["orbits"])

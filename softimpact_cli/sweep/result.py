@@ -13,7 +13,7 @@ from ..analysis.labels import latex_of, name_of
 from ..config import Scene, forcing_period
 from ..config.axes import GRID_AXES, axis_units, catalogue_key
 from ..config.chain_scene import CHAIN
-from .chunks import RESULT_FIELDS
+from .chunks import RESULT_FIELDS, result_fields
 
 ATTRIBUTES = {
     "label": ("attractor reached (code; see label_code/label_name)", "1"),
@@ -27,6 +27,13 @@ ATTRIBUTES = {
                  "the section after the first pass (second stage)", "1"),
     "steps": ("integrator steps, all methods", "1"),
     "stiff_steps": ("steps taken by Rodas4 (the others by the explicit pair)", "1"),
+    # a system with rigid stops only, over the first pass's integration (chunks.RIGID_FIELDS)
+    "rigid_impacts": ("impacts on rigid stops (velocity resets), start to classification",
+                      "1"),
+    "rigid_chatter_sequences": ("chatter sequences ended by their accumulation point, start "
+                                "to classification", "1"),
+    "rigid_sticking_phases": ("sticking phases begun on rigid stops, start to "
+                              "classification", "1"),
 }
 
 
@@ -66,7 +73,7 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     """Dataset with dims (*swept model parameters, d, phi, k_c, c_c, t0,
     *initial-condition dims) (``Grid.dims``).
 
-    ``arrays``: flat per-trajectory arrays (RESULT_FIELDS) in plan order; ``orbits``:
+    ``arrays``: flat per-trajectory arrays (``chunks.result_fields``) in plan order; ``orbits``:
     {(grid point, code): (flat index, section points)} with the first occurrence kept.
     """
     grid = scene.grid
@@ -88,7 +95,7 @@ def sweep_dataset(scene: Scene, arrays: dict[str, np.ndarray], orbits: dict,
     for a, values in ic.coords().items():
         coords[a] = (a, values, {"long_name": f"initial {a}", "units": "1"})
     data = {}
-    for key in RESULT_FIELDS:
+    for key in result_fields(scene.system):
         long_name, units = ATTRIBUTES[key]
         data[key] = (dims, arrays[key].reshape(shape), {"long_name": long_name, "units": units})
     codes = sorted(set(range(len(names))) | set(np.unique(arrays["label"]).tolist()))

@@ -29,7 +29,7 @@ from ..store.sweep_store import (
     result_problem,
 )
 from ..systems.base import check_bodies
-from .chunks import RESULT_FIELDS, SweepContext
+from .chunks import SweepContext, result_fields
 from .executors import make_executor
 from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, chunk_size_for
@@ -204,7 +204,7 @@ def prepare_inputs(scene: Scene, echo: Callable[[str], None] = lambda s: None
 
 def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: dict,
                      recurrent: list | None = None) -> xr.Dataset:
-    """The sweep's dataset from its flat arrays (RESULT_FIELDS, plan order) and orbits:
+    """The sweep's dataset from its flat arrays (``result_fields``, plan order) and orbits:
     labels, the kind's extra variables (``after_sweep``) and the catalogue. ``recurrent``:
     the second stage's recurrent trajectories of every chunk (``second_stage.unpack``),
     named here in flat-index order (``second_stage.relabel``: labels and orbits updated)."""
@@ -273,7 +273,8 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity, context: Swe
     """(flat arrays, orbits, {session start: its last part written}, recurrent
     trajectories) from verified parts. A part that fails verification is deleted and
     DamagedPart names it."""
-    arrays = {k: np.empty(plan.n_total, dtype=t) for k, t in RESULT_FIELDS.items()}
+    arrays = {k: np.empty(plan.n_total, dtype=t)
+              for k, t in result_fields(context.system()).items()}
     orbits: dict = {}
     recurrent: list = []
     sessions: dict[float, float] = {}
@@ -285,6 +286,9 @@ def _assemble(store: SweepStore, plan: Plan, identity: RunIdentity, context: Swe
         except DamagedPart as why:
             store.drop_chunk(index)
             raise DamagedPart(f"chunk {index}: {why}") from None
+        if any(key not in chunk for key in arrays):  # written before the rigid counters
+            store.drop_chunk(index)
+            raise DamagedPart(f"chunk {index}: incomplete arrays")
         merge_chunk(arrays, orbits, numbering, context, start, stop, chunk)
         recurrent += unpack(chunk)
         first, last = float(meta["session_started"]), float(meta["written"])
