@@ -64,6 +64,20 @@ def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
 
 SHOCK_PHASES, SHOCK_SCAN, SHOCK_TOL = 4, 16, 1e-2  # a second robustness measure, kept cheap
 
+# --quick: at most this many candidates screened, best ones refined and fatal-shock
+# directions (every stage still runs; the catalogue, region and samples stay)
+QUICK_CANDIDATES, QUICK_REFINE, QUICK_SHOCK_DIRECTIONS = 12, 2, 4
+
+
+def shrink(analysis, grid, axis: int):
+    """--quick: fewer candidates, refined points and fatal-shock directions."""
+    return (replace(analysis, candidates=min(analysis.candidates, QUICK_CANDIDATES),
+                    refine=min(analysis.refine, QUICK_REFINE),
+                    shock_directions=min(analysis.shock_directions,
+                                         QUICK_SHOCK_DIRECTIONS)), grid,
+            f", at most {QUICK_CANDIDATES} candidates, {QUICK_REFINE} refined, "
+            f"{QUICK_SHOCK_DIRECTIONS} fatal-shock directions")
+
 
 def fatal_shocks(scene, ds, workers=None) -> dict:
     """The minimal fatal shock of the target at the pick and at the reference point
@@ -133,7 +147,8 @@ KEYS = {
 }
 
 KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target survives (see "
-                      "design)", read, plan, sections=sections, run=run, summary=design_summary,
+                      "design)", read, plan, sections=sections, shrink=shrink, run=run,
+                      summary=design_summary,
                       report=format_design, info_lines=info_lines, info_catalogue=False,
                       outcome_counts=design_counts, progress_unit="trajectories",
                       variables=("score", "share"),
