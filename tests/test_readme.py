@@ -202,7 +202,8 @@ def test_quick_shrinks_every_scene(path):
         assert (a.start, a.stop) == (scene.analysis.start, scene.analysis.stop)
     if scene.analysis.kind == "design":  # every stage still runs, on fewer points
         a = small.analysis
-        assert a.candidates <= 12 and 1 <= a.refine <= 2 and a.shock_directions <= 4
+        assert a.candidates <= 6 and 1 <= a.refine <= 2 and a.shock_directions <= 4
+        assert a.screen_n <= 50 and (a.robust_n or 0) <= 50
         assert (a.bounds, a.phi_points, a.target) == (scene.analysis.bounds,
                                                       scene.analysis.phi_points,
                                                       scene.analysis.target)

@@ -72,19 +72,23 @@ def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
 
 SHOCK_PHASES, SHOCK_SCAN, SHOCK_TOL = 4, 16, 1e-2  # a second robustness measure, kept cheap
 
-# --quick: at most this many candidates screened, best ones refined and fatal-shock
-# directions (every stage still runs; the catalogue, region and samples stay)
-QUICK_CANDIDATES, QUICK_REFINE, QUICK_SHOCK_DIRECTIONS = 12, 2, 4
+# --quick: at most this many candidates screened, best ones refined, samples per screened
+# or perturbed point, and fatal-shock directions (every stage still runs; the catalogue,
+# the region and the samples stay)
+QUICK_CANDIDATES, QUICK_REFINE, QUICK_POINT_SAMPLES, QUICK_SHOCK_DIRECTIONS = 6, 2, 50, 4
 
 
 def shrink(analysis, grid, axis: int):
-    """--quick: fewer candidates, refined points and fatal-shock directions."""
-    return (replace(analysis, candidates=min(analysis.candidates, QUICK_CANDIDATES),
-                    refine=min(analysis.refine, QUICK_REFINE),
-                    shock_directions=min(analysis.shock_directions,
-                                         QUICK_SHOCK_DIRECTIONS)), grid,
-            f", at most {QUICK_CANDIDATES} candidates, {QUICK_REFINE} refined, "
-            f"{QUICK_SHOCK_DIRECTIONS} fatal-shock directions")
+    """--quick: fewer candidates, refined points, samples per point and fatal-shock
+    directions."""
+    a = analysis
+    robust_n = min(a.robust_n, QUICK_POINT_SAMPLES) if a.robust_n else a.robust_n
+    return (replace(a, candidates=min(a.candidates, QUICK_CANDIDATES),
+                    refine=min(a.refine, QUICK_REFINE),
+                    screen_n=min(a.screen_n, QUICK_POINT_SAMPLES), robust_n=robust_n,
+                    shock_directions=min(a.shock_directions, QUICK_SHOCK_DIRECTIONS)), grid,
+            f", at most {QUICK_CANDIDATES} candidates on {QUICK_POINT_SAMPLES} samples, "
+            f"{QUICK_REFINE} refined, {QUICK_SHOCK_DIRECTIONS} fatal-shock directions")
 
 
 def fatal_shocks(scene, ds, workers=None) -> dict:
