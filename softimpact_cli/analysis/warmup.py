@@ -159,6 +159,11 @@ def _steps(model: str | None = None) -> list:
             if not method_traits(method).closed_form:  # a rigid stop is not linear
                 steps.append((f"chain with a rigid stop: {method}",
                               lambda m=method: run_system(rigid, m)))
+        # a trajectory the first pass leaves unresolved is judged by its Lyapunov spectrum
+        # (nonperiodic.section_spectrum): Benettin with the impact loop of dopri5 (without
+        # it, 14 s of compiling the first time, 2026-11-27)
+        steps.append(("chain with a rigid stop: Lyapunov exponents (Benettin)",
+                      lambda: run_lyapunov(rigid)))
     for (name, bodies), system in sorted(REGISTRY.items()):
         if model is not None and name != model:
             continue

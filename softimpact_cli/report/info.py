@@ -137,13 +137,32 @@ def catalogue_summary(ds) -> dict:
     if "combination_name" in ds:
         out["combinations"] = [str(n) for n in ds["combination_name"].values]
     if "combination_survives" in ds:  # a chain's: each stop's critical values
-        out["stops"] = [float(v) for v in ds["stop_value"].values]
         out["critical"] = {str(n): [float(v) for v in row] for n, row in zip(
             ds["combination_name"].values, ds["combination_critical"].values, strict=True)}
-        out["surviving"] = [str(n) for n, ok in zip(
-            ds["combination_name"].values, ds["combination_survives"].values, strict=True)
-            if ok]
+        out.update(surviving_summary(ds))
     return out
+
+
+def surviving_summary(ds) -> dict:
+    """A chain's surviving products: ``stops`` (each stop's value) and ``surviving``
+    (names) at its one point, or for a sweep of several grid points
+    ``surviving_per_point``: [{the point's values, "stops", "surviving"}, ...] (a sweep
+    stores each point's own, ``sweep.result.point_survival``)."""
+    names = [str(n) for n in ds["combination_name"].values]
+    survives, stops = ds["combination_survives"], ds["stop_value"]
+    if survives.ndim == 1 or survives.size == len(names):  # one point
+        alive = np.ravel(survives.values)
+        return {"stops": [float(v) for v in np.ravel(stops.values)],
+                "surviving": [n for n, ok in zip(names, alive, strict=True) if ok]}
+    dims = grid_dims(ds)
+    survives = survives.transpose(*dims, "combination").values
+    stops = stops.transpose(*dims, "stop").values
+    points = []
+    for index in np.ndindex(*survives.shape[:-1]):
+        points.append({**grid_point(ds, index), "stops": [float(v) for v in stops[index]],
+                       "surviving": [n for n, ok in zip(names, survives[index], strict=True)
+                                     if ok]})
+    return {"surviving_per_point": points}
 
 
 def format_catalogue(ds) -> str:
@@ -161,7 +180,7 @@ def format_catalogue(ds) -> str:
     if "combinations" in summary:
         names = summary["combinations"]
         lines.append(f"combinations ({len(names)}): " + ", ".join(names))
-    if "critical" in summary:  # a chain's products: each stop's critical value
+    if "critical" in summary and "surviving" in summary:  # a chain's products at one point
         stops = summary["stops"]
         width = max(len(n) for n in summary["critical"]) if summary["critical"] else 10
         lines.append(f"{'product':{width}s} " + " ".join(
@@ -171,6 +190,18 @@ def format_catalogue(ds) -> str:
                          + f"  {'yes' if name in summary['surviving'] else 'no'}")
         lines.append(f"surviving ({len(summary['surviving'])}): "
                      + (", ".join(summary["surviving"]) or "none"))
+    elif "critical" in summary:  # a sweep's: the critical values, each point's survivors
+        width = max(len(n) for n in summary["critical"]) if summary["critical"] else 10
+        n_stops = len(next(iter(summary["critical"].values()), []))
+        lines.append(f"{'product':{width}s} " + " ".join(
+            f"{f'stop {s}':>14s}" for s in range(1, n_stops + 1)))
+        for name, row in summary["critical"].items():
+            lines.append(f"{name:{width}s} " + " ".join(f"{v:14.6f}" for v in row))
+        for point in summary["surviving_per_point"]:
+            where = ", ".join(f"{k}={v:g}" for k, v in point.items()
+                              if k not in ("stops", "surviving") and isinstance(v, float))
+            lines.append(f"surviving at {where} ({len(point['surviving'])}): "
+                         + (", ".join(point["surviving"]) or "none"))
     return "\n".join(lines)
 
 
