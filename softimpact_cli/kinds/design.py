@@ -72,6 +72,24 @@ def run(scene, progress=None, workers=None, scheduler=None, echo=None, **_):
 
 SHOCK_PHASES, SHOCK_SCAN, SHOCK_TOL = 4, 16, 1e-2  # a second robustness measure, kept cheap
 
+# --quick: at most this many candidates screened, best ones refined, samples per screened
+# or perturbed point, and fatal-shock directions (every stage still runs; the catalogue,
+# the region and the samples stay)
+QUICK_CANDIDATES, QUICK_REFINE, QUICK_POINT_SAMPLES, QUICK_SHOCK_DIRECTIONS = 6, 2, 50, 4
+
+
+def shrink(analysis, grid, axis: int):
+    """--quick: fewer candidates, refined points, samples per point and fatal-shock
+    directions."""
+    a = analysis
+    robust_n = min(a.robust_n, QUICK_POINT_SAMPLES) if a.robust_n else a.robust_n
+    return (replace(a, candidates=min(a.candidates, QUICK_CANDIDATES),
+                    refine=min(a.refine, QUICK_REFINE),
+                    screen_n=min(a.screen_n, QUICK_POINT_SAMPLES), robust_n=robust_n,
+                    shock_directions=min(a.shock_directions, QUICK_SHOCK_DIRECTIONS)), grid,
+            f", at most {QUICK_CANDIDATES} candidates on {QUICK_POINT_SAMPLES} samples, "
+            f"{QUICK_REFINE} refined, {QUICK_SHOCK_DIRECTIONS} fatal-shock directions")
+
 
 def fatal_shocks(scene, ds, workers=None) -> dict:
     """The minimal fatal shock of the target at the pick and at the reference point
@@ -151,7 +169,8 @@ KEYS = {
 }
 
 KINDS = (AnalysisKind("design", "(d, phi, k_c, c_c) where only the target survives (a chain: "
-                      "any of its parameters)", read, plan, sections=sections, run=run,
+                      "any of its parameters)", read, plan, sections=sections, shrink=shrink,
+                      run=run,
                       summary=design_summary,
                       report=format_design, info_lines=info_lines, info_catalogue=False,
                       outcome_counts=design_counts, progress_unit="trajectories",
