@@ -11,6 +11,7 @@ import json
 import numpy as np
 import pytest
 
+from softimpact_cli.analysis.engine import Problem, record_trajectory
 from softimpact_cli.kinds.results import describe, format_summary
 from softimpact_cli.kinds.scene import parse_scene
 from softimpact_cli.store import open_result
@@ -158,3 +159,28 @@ def test_a_soft_chain_has_no_rigid_variable_and_no_impacts_per_period(tmp_path):
     summary = describe(ds)
     assert "rigid_counts" not in summary and "impacts_per_period" not in summary
     assert "impacts per period" not in format_summary(summary, ds)
+
+
+def test_a_chattering_start_counts_its_chatter_and_sticking_as_its_recorded_trajectory(
+        tmp_path):
+    """The issue's chattering case (w = 2.5, wall 0.9 A): starts that chatter and stick
+    carry the counts the recorded trajectory (``record_trajectory``, the trajectory kind's)
+    finds over as many periods, with the same settings."""
+    w = 2.5
+    sigma = 0.9 * amplitude(ZETA, w)
+    starts = [[float(sigma) - 1e-6, 0.0], [0.0, 0.0], [-0.5, 1.0]]
+    scene = parse_scene(oscillator(w, sigma, f"""[analysis]
+kind = "basins"
+[initial_conditions]
+kind = "list"
+states = {starts}
+"""))
+    ds = run_sweep(scene, tmp_path / "c.h5", workers=1)
+    problem = Problem(scene.system, scene.values, scene.integrator)
+    used = ds["periods_used"].values.ravel()
+    for i, state in enumerate(starts):
+        traj = record_trajectory(problem, state, 0.0, int(used[i]), 4)
+        for name in ("impacts", "chatter_sequences", "sticking_phases"):
+            assert int(ds[f"rigid_{name}"].values.ravel()[i]) == traj.impacts[name]
+    assert ds["rigid_chatter_sequences"].values.sum() >= 1
+    assert ds["rigid_sticking_phases"].values.sum() >= 1
