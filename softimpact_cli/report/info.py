@@ -20,10 +20,8 @@ from ..kernels.codes import (
 )
 from ..sweep.result import grid_axes, grid_dims, grid_point  # noqa: F401  (named here too)
 from .nonperiodic import nonperiodic_summary
+from .rigid import RIGID_COUNTERS, impacts_per_period
 from .verification import verification_summary
-
-# a rigid result's per-trajectory counters, variables ``rigid_<name>`` (sweep.chunks)
-RIGID_COUNTERS = ("impacts", "chatter_sequences", "sticking_phases")
 
 SUMMARY_KEYS = (
     "n", "n_chunks", "plan", "executor", "catalogue_source", "t0_mode",
@@ -266,21 +264,6 @@ def sweep_summary(ds) -> dict:
             "wall_s": float(ds.attrs.get("wall_s", np.nan)),
             "labels": {str(c): n for c, n in table.items()},
             "points": points, **status}
-
-
-def impacts_per_period(label: np.ndarray, period: np.ndarray, contacts: np.ndarray,
-                       table: dict[int, str]) -> dict[str, list[float]]:
-    """{label name: its impacts per forcing period} of the trajectories on an impacting
-    periodic orbit (period > 0, contacts > 0), from their final orbit's count (``contacts``)
-    over its period; the distinct values, ascending (one unless a name covers several
-    orbits). Arrays: one value per trajectory, same shape."""
-    keep = (period > 0) & (contacts > 0)
-    out = {}
-    for code in np.unique(label[keep]):
-        chosen = keep & (label == code)
-        ratios = np.unique(contacts[chosen] / period[chosen].astype(float))
-        out[table[int(code)]] = [float(v) for v in ratios]
-    return out
 
 
 def unresolved_then_named(ds) -> dict | None:

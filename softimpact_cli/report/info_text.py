@@ -12,6 +12,7 @@ from ..analysis.attributes import attribute_list
 from ..config.axes import COUPLING_AXES, every_axis
 from .info import format_catalogue
 from .nonperiodic import nonperiodic_lines
+from .rigid import per_period_text
 from .verification import verification_lines
 
 # parameters a kind varies or does not use, left out of its "parameters" line
@@ -58,13 +59,6 @@ def _status_text(totals: dict, then: dict) -> str:
     return ", ".join(f"{key} {count}" + (f" (first pass; then {text(then)})"
                                          if key == "unresolved" else "")
                      for key, count in totals.items())
-
-
-def per_period_text(per_label: dict[str, list[float]]) -> str:
-    """A rigid result's impacts per period, "impacting P1 1, impacting P2 1.5" (several
-    values of one name joined by "or")."""
-    return ", ".join(f"{name} {' or '.join(f'{v:g}' for v in values)}"
-                     for name, values in per_label.items())
 
 
 def _is_number(v: str) -> bool:
