@@ -66,10 +66,6 @@ def chain_refusal(kind: str, doc: dict) -> str | None:
                 + " or ".join(map(repr, CHAIN_KINDS)))
     rigid = any(isinstance(stop, dict) and stop.get("law") == "rigid"
                 for stop in doc.get("stop", []) or [])
-    if kind == "lyapunov" and rigid:
-        return ("not yet with a rigid stop: its exponents need the saltation matrix of the "
-                "impact's reset, not written yet (kinds trajectory, basins, dcrit and "
-                "bifurcation run)")
     if kind == "continuation" and rigid:
         return ("not yet with a rigid stop: its monodromy needs the saltation matrix of the "
                 "impact's reset, which the shooting's variational kernel does not apply yet "

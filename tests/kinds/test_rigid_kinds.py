@@ -142,6 +142,28 @@ w = [0.8, 1.2]
     np.testing.assert_allclose(ds["d_crit"].values[0, 0], expected, rtol=1e-8)
 
 
+def test_lyapunov_exponents_of_a_chaotic_rigid_orbit():
+    """w = 2.8, wall at 0 (chaotic: a positive exponent), 400 periods from (-0.5, 0): the
+    exponents' sum is the damping's -2 zeta plus ln det S = 2 ln r per impact (the
+    switches the kernel crossed are the impacts), and the spectrum is (+, -)."""
+    ds = run_scene(parse_scene(oscillator(2.8, 0.0, """[analysis]
+kind = "lyapunov"
+start = "state"
+state = [-0.5, 0.0]
+periods = 400
+transient = 0
+segments = 4
+""")))
+    exponents, errors = ds["exponent"].values[0], ds["exponent_stderr"].values[0]
+    assert int(ds["status"].values[0]) == 0
+    assert exponents[0] - 3.0 * errors[0] > 0.0 > exponents[1]
+    duration = 400 * 2.0 * np.pi / 2.8
+    impacts = int(ds["switches"].values[0])
+    assert impacts > 400
+    expected = -2.0 * ZETA * duration + 2.0 * np.log(R) * impacts
+    assert float(exponents.sum()) * duration == pytest.approx(expected, abs=1e-5)
+
+
 def test_continuation_with_a_rigid_stop_is_refused_in_one_line():
     """Its monodromy comes from the Benettin kernel (kernels/lyapunov.py), which applies a
     soft law's switches, not the impact's reset and its saltation: refused, not wrong."""
