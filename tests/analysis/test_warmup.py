@@ -121,3 +121,69 @@ def test_warm_up_compiles_the_impact_loop_of_every_method_for_rigid_stops():
         assert (f"chain with a rigid stop: {method}" in names) == wanted
     kernels = warmup._scene_kernels("chain", 1, "rk4", False, rigid)
     assert kernels[2].__name__ == "advance_impacts_rk4_impacts"
+
+
+def _compiled_signatures() -> dict[str, int]:
+    """How many signatures each jitted function of the package has in this process."""
+    from numba.core.registry import CPUDispatcher
+
+    from softimpact_cli.kernels import IMPACT_ADVANCE
+
+    found = {f"impacts.{name}": len(d.signatures) for name, d in IMPACT_ADVANCE.items()}
+    for module_name, module in list(sys.modules.items()):
+        if not module_name.startswith("softimpact_cli"):
+            continue
+        for attr, value in vars(module).items():
+            if isinstance(value, CPUDispatcher):
+                found[f"{module_name}.{attr}"] = len(value.signatures)
+    return found
+
+
+def test_the_warm_up_compiles_lyapunov_and_continuation_with_a_rigid_stop():
+    """Kinds lyapunov and continuation on a rigid stop run the impact loop on the
+    variational equations (a new signature of it, of Benettin's kernel and of the flow):
+    once the warm-up's rigid steps have run, a rigid lyapunov and continuation scene
+    compile nothing more (so after ``make install`` such a run says no "compiling" line;
+    without the step "Lyapunov exponents and the shooting's monodromy", Benettin's kernel
+    and the flow compiled a new signature here)."""
+    from softimpact_cli.kinds.run import run_scene
+    from softimpact_cli.kinds.scene import parse_scene
+
+    steps = dict(warmup._steps("chain"))
+    assert any(n.startswith("chain with a rigid stop: Lyapunov") for n in steps)
+    for name, step in steps.items():
+        if name.startswith("chain with a rigid stop:"):
+            step()
+    before = _compiled_signatures()
+    head = """[system]
+model = "chain"
+bodies = 1
+c = 0.1
+phi = "3*pi/2"
+w = 0.8
+[[stop]]
+body = 1
+wall = 1.35
+side = "right"
+law = "rigid"
+r = 0.8
+"""
+    run_scene(parse_scene(head + """[analysis]
+kind = "lyapunov"
+state = [-0.5, 0.0]
+periods = 4
+transient = 0
+segments = 2
+"""))
+    run_scene(parse_scene(head + """[analysis]
+kind = "continuation"
+parameter = "stop.1.wall"
+low = 1.0
+high = 2.0
+start = "state"
+state = [-0.835, -0.339]
+max_points = 3
+switch_depth = 0
+"""))
+    after = _compiled_signatures()
+    assert {k: v for k, v in after.items() if before.get(k, 0) != v} == {}
