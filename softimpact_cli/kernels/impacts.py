@@ -204,11 +204,13 @@ def leave_released(p, table, released, y, A, b):
 
 
 @njit(cache=True)
-def impact(rhs, p, t, y, n, block, A, b, s, mode, istate, f):
-    """The reset at a crossing into rigid stop surface ``s`` (``block`` its table entry) of
-    the state ``y[:n]``; returns (whether the stop sticks (the chatter accumulated, or ``r =
+def impact(rhs, p, t, y, n, block, surface, mode, istate, f):
+    """The reset at a crossing into rigid stop surface ``s`` (``surface = (A, b, s)``: the
+    surfaces' rows and offsets, and its index; ``block`` its table entry) of the state
+    ``y[:n]``; returns (whether the stop sticks (the chatter accumulated, or ``r =
     0`` with the bodies pushed together), the factor c of the velocity reset made, ``v+ =
     v- - c g'(v-) w``: 1 + r, or 0 when no reset)."""
+    A, b, s = surface
     r = p[block + RESTITUTION]
     rate = surface_rate(A, s, y, n)
     factor = 0.0
@@ -238,11 +240,14 @@ def impact(rhs, p, t, y, n, block, A, b, s, mode, istate, f):
 
 
 @njit(cache=True)
-def impact_tangents(rhs, p, t, before, z, n, block, A, s, modes, sticks, factor):
+def impact_tangents(rhs, p, t, states, n, block, a, modes, reset):
     """Carry the tangent vectors of a variational state ``z = (y, vec Phi)`` across an
     impact: ``Phi <- S Phi``, S the saltation matrix of the reset (see the module's doc).
-    ``before``: z before the reset; ``modes``: the modes before and after it (stuck or
-    not); ``factor``: ``impact``'s (a stuck stop's reset, plastic in all, has 1)."""
+    ``states``: (z before the reset, z after it, changed in place); ``a``: the stop's
+    surface row; ``modes``: the modes before and after it; ``reset``: (whether it stuck,
+    ``impact``'s factor; a stuck stop's reset, plastic in all, has 1)."""
+    before, z = states
+    sticks, factor = reset
     S = np.empty((n, n))
     DR = np.zeros((n, n))
     for i in range(n):
@@ -252,17 +257,17 @@ def impact_tangents(rhs, p, t, before, z, n, block, A, s, modes, sticks, factor)
     for i in range(bodies):
         w = p[block + DIRECTION + i]
         for j in range(bodies):
-            DR[2 * i + 1, 2 * j + 1] -= c * w * A[s, 2 * j]
+            DR[2 * i + 1, 2 * j + 1] -= c * w * a[2 * j]
     fb = np.empty(z.shape[0])
     fa = np.empty(z.shape[0])
     rhs(t, before, p, modes[0], fb)
     rhs(t, z, p, modes[1], fa)
-    rate = reset_saltation(DR, fb, fa, A[s], n, S)
+    rate = reset_saltation(DR, fb, fa, a, n, S)
     if sticks and rate <= 0.0:  # stuck from a tangential contact: on the constraint
         for i in range(bodies):
             w = p[block + DIRECTION + i]
             for j in range(bodies):
-                S[2 * i, 2 * j] -= w * A[s, 2 * j]
+                S[2 * i, 2 * j] -= w * a[2 * j]
     apply_to_tangents(S, z, n)
 
 
@@ -411,13 +416,13 @@ def impact_loop(name, advance):
                     continue
                 mode = istate[MODE]
                 before_reset = y.copy() if dim > n else y
-                sticks, factor = impact(rhs, p, t, y, n, block, A_s, surfaces[1], s, mode,
+                sticks, factor = impact(rhs, p, t, y, n, block, (A_s, surfaces[1], s), mode,
                                         istate, f)
                 if sticks:
                     istate[MODE] |= 1 << s
                 if dim > n:  # a variational state: its tangents cross the impact too
-                    impact_tangents(rhs, p, t, before_reset, y, n, block, A_s, s,
-                                    (mode, istate[MODE]), sticks, factor)
+                    impact_tangents(rhs, p, t, (before_reset, y), n, block, A_s[s],
+                                    (mode, istate[MODE]), (sticks, factor))
             # the budget is checked once the impacts are made: a caller stopping at every
             # switch (kernels/lyapunov.py, budget 0) continues from the reset state
             if switches > opts[MAX_SWITCHES]:
