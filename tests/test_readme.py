@@ -200,6 +200,18 @@ def test_quick_shrinks_every_scene(path):
         a = small.analysis
         assert abs(a.stop - a.start) / a.step <= 50
         assert (a.start, a.stop) == (scene.analysis.start, scene.analysis.stop)
+    if scene.analysis.kind == "design":  # every stage still runs, on fewer points
+        a = small.analysis
+        assert a.candidates <= 6 and 1 <= a.refine <= 2 and a.shock_directions <= 4
+        assert a.screen_n <= 50 and (a.robust_n or 0) <= 50
+        assert (a.bounds, a.phi_points, a.target) == (scene.analysis.bounds,
+                                                      scene.analysis.phi_points,
+                                                      scene.analysis.target)
+    if scene.analysis.kind == "fatal_shock":
+        a = small.analysis
+        assert a.phases <= 4 and a.directions <= 16
+        assert (a.scan, a.tol, a.max_shock) == (scene.analysis.scan, scene.analysis.tol,
+                                                scene.analysis.max_shock)
     if small is not scene:
         assert "--quick" in small.text and small.sha256 != scene.sha256
 

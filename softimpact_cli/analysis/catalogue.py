@@ -16,6 +16,7 @@
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import itertools
 from dataclasses import asdict, dataclass
@@ -222,8 +223,31 @@ def orbit_points(problem: Problem, x0: np.ndarray, period: int) -> np.ndarray:
 
 def amplitude(problem: Problem, x0: np.ndarray, period: int, samples: int = 2048) -> float:
     """max |x| over the orbit through x0, from dense samples."""
-    traj = record_trajectory(problem, x0, 0.0, period, samples)
-    return float(np.max(np.abs(traj.y[:, 0])))
+    return orbit_shape(problem, x0, period, samples)[0]
+
+
+def orbit_shape(problem: Problem, x0: np.ndarray, period: int, samples: int = 2048
+                ) -> tuple[float, float, float]:
+    """(max |x|, mean x, max x) over the orbit through x0, from dense samples: what does
+    not depend on where the orbit is cut (a time shift, another body's phase), up to
+    the sampling (relative ~1e-5 for the maxima, rounding for the mean)."""
+    x = record_trajectory(problem, x0, 0.0, period, samples).y[:, 0]
+    one_lap = x[: period * samples]  # the last sample closes the orbit: counted once
+    return float(np.max(np.abs(x))), float(np.mean(one_lap)), float(np.max(x))
+
+
+def orbit_order(tol: float):
+    """A sort key of (period, orbit_shape) entries: by period, then amplitude, mean x and
+    max x, each equal within ``tol`` relative (the sampling's noise must not decide the
+    order of two mirror-image orbits of one amplitude: their mean x tells them apart)."""
+    def compare(a, b) -> int:
+        if a[0] != b[0]:
+            return -1 if a[0] < b[0] else 1
+        for u, v in zip(a[1], b[1], strict=True):
+            if abs(u - v) > tol * max(1.0, abs(u), abs(v)):
+                return -1 if u < v else 1
+        return 0
+    return functools.cmp_to_key(compare)
 
 
 def find_attractors(problem: Problem, states: np.ndarray, t0: float = 0.0,
@@ -251,7 +275,8 @@ def find_attractors(problem: Problem, states: np.ndarray, t0: float = 0.0,
 
 def body_catalogue(problem: Problem, states: np.ndarray, t0: float = 0.0,
                    match_tol: float = 1e-3, progress=None) -> tuple[list[Attractor], dict]:
-    """Attractors of one body, refined, numbered by (period, amplitude)."""
+    """Attractors of one body, refined, numbered by (period, amplitude, mean x, max x):
+    ``orbit_order``."""
     orbits, counts = find_attractors(problem, states, t0, match_tol, progress)
     tight = Problem(problem.system, problem.values, SHOOTING)
     found = []
@@ -259,9 +284,13 @@ def body_catalogue(problem: Problem, states: np.ndarray, t0: float = 0.0,
         period = pts.shape[0]
         x, monodromy, residual = refine_orbit(problem, canonical(pts)[0], period)
         points = canonical(orbit_points(tight, x, period))
-        found.append((period, amplitude(tight, points[0], period), points,
-                      np.linalg.eigvals(monodromy), hits / len(states), residual))
-    found.sort(key=lambda f: (f[0], f[1]))
+        shape = orbit_shape(tight, points[0], period)
+        found.append((period, shape[0], points, np.linalg.eigvals(monodromy),
+                      hits / len(states), residual, shape))
+    # numbered by the orbit itself, not by the search's order: identical bodies at other
+    # phases number one orbit alike
+    order = orbit_order(match_tol)
+    found.sort(key=lambda f: order((f[0], f[6])))
     attractors = []
     for f in found:
         # Newton may land two samples' orbits on one (a slow transient mistaken for an orbit).

@@ -293,12 +293,12 @@ def design(system, values: dict, left: list, settings, n: int, evaluate: Evaluat
     screen = evaluate(candidates, 0, screen_n)
     cand_margin = [margins(region, d_crit[:, region.index(p["phi"])], p["d"], p["phi"])
                    for p in candidates]  # candidates sit on grid phases: exact columns
-    order = _rank(screen, names, target, [m["relative"] for m in cand_margin])
+    order = rank_codes(screen, names, target, [m["relative"] for m in cand_margin])
     finalists = [int(i) for i in order[: s.refine]]
     progress(f"verifying the best {len(finalists)} on {n} samples")
     rest = evaluate([candidates[i] for i in finalists], screen_n, n)
     full = np.concatenate([screen[finalists], rest], axis=1)
-    final = _rank(full, names, target, [cand_margin[i]["relative"] for i in finalists])
+    final = rank_codes(full, names, target, [cand_margin[i]["relative"] for i in finalists])
     finalists = [finalists[int(k)] for k in final]
     full = full[final]
     pick = candidates[finalists[0]]
@@ -336,7 +336,9 @@ def design(system, values: dict, left: list, settings, n: int, evaluate: Evaluat
     return design_dataset(rows, region, s, n, screen_n, robust_n)
 
 
-def _rank(codes: np.ndarray, names: tuple[str, ...], target: str, margin) -> np.ndarray:
+def rank_codes(codes: np.ndarray, names: tuple[str, ...], target: str, margin) -> np.ndarray:
+    """Indices of the points (rows of label ``codes``) from best to worst: score, then
+    margin among the tied (:func:`ranking`)."""
     group, counts = group_counts(codes, names)
     n = codes.shape[1]
     score = scores(group, counts, target, n)

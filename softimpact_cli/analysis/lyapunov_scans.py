@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .chain_catalogue import ChainCatalogue
 from .engine import Problem
 from .lyapunov import Spectrum, floquet_exponents, lyapunov_spectrum
 
@@ -46,13 +47,23 @@ def trajectory_spectrum(problem: Problem, state, t0: float, avg: Averaging):
 
 def catalogue_spectra(problem: Problem, catalogue, avg: Averaging, progress=None):
     """The spectrum of every catalogue solution, from its section point 0 at t = 0: one
-    body's attractors, or a pair's combinations (joint orbits), with the Floquet
-    exponents beside them (a combination's multipliers over its joint period q are the
-    left and right bodies' over theirs, to the power q / p; their exponents are the
-    bodies' ln|mu| / (p T), unchanged)."""
+    body's attractors, a pair's combinations or a chain's products (joint orbits, every
+    one of the catalogue as for a pair, whether or not a stop destroys it), with the
+    Floquet exponents beside them (a combination's multipliers over its joint period q are
+    the left and right bodies' over theirs, to the power q / p; their exponents are the
+    bodies' ln|mu| / (p T), unchanged; a chain's product: every body's, likewise)."""
     T = problem.period
     specs, names, floquet = [], [], []
-    if problem.system.bodies == 1:
+    if isinstance(catalogue, ChainCatalogue):
+        for product in catalogue.products:
+            specs.append(avg.run(problem, product.orbit[0], 0.0))
+            names.append(product.name)
+            floquet.append(np.sort(np.concatenate([
+                floquet_exponents(a.multipliers, a.period, T)
+                for a in product.attractors]))[::-1])
+            if progress:
+                progress(1)
+    elif problem.system.bodies == 1:
         for a in catalogue.attractors:
             specs.append(avg.run(problem, a.points[0], 0.0))
             names.append(a.name)

@@ -165,8 +165,13 @@ def _steps(model: str | None = None) -> list:
             if not method_traits(method).closed_form:  # a rigid stop is not linear
                 steps.append((f"chain with a rigid stop: {method}",
                               lambda m=method: run_system(rigid, m)))
-        steps.append(("chain with a rigid stop: Lyapunov exponents and the shooting's "
-                      "monodromy (the impact loop on the variational equations)",
+        # Benettin and the flow with the impact loop of dopri5 on the variational
+        # equations: kinds lyapunov and continuation (the shooting's monodromy), and a
+        # trajectory the first pass leaves unresolved, judged by its Lyapunov spectrum
+        # (nonperiodic.section_spectrum; without it, 14 s of compiling the first time,
+        # 2026-11-27)
+        steps.append(("chain with a rigid stop: Lyapunov exponents (Benettin) and the "
+                      "shooting's monodromy (the impact loop on the variational equations)",
                       lambda: run_rigid_variational(rigid)))
     for (name, bodies), system in sorted(REGISTRY.items()):
         if model is not None and name != model:

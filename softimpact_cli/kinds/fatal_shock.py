@@ -4,7 +4,7 @@ that sends the system to another attractor."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -70,6 +70,17 @@ def sections(analysis, ctx) -> Sections:
     return Sections(analysis, catalogue=ctx.read_catalogue())
 
 
+# --quick: at most this many phases and directions (the first of the scene's directions:
+# the same seed draws them first; the scan and the bisection's tolerance stay)
+QUICK_PHASES, QUICK_DIRECTIONS = 4, 16
+
+
+def shrink(analysis, grid, axis: int):
+    return (replace(analysis, phases=min(analysis.phases, QUICK_PHASES),
+                    directions=min(analysis.directions, QUICK_DIRECTIONS)), grid,
+            f", at most {QUICK_PHASES} phases x {QUICK_DIRECTIONS} directions")
+
+
 def solution_orbit(scene, catalogue) -> np.ndarray:
     """The section points (t = 0 mod T) of the scene's solution in its catalogue."""
     found = catalogue.orbits
@@ -111,7 +122,7 @@ def plan(scene, workers=None, chunk_size=None) -> str:
 
 KINDS = (AnalysisKind(
     "fatal_shock", "minimal fatal shock: the smallest kick that sends a solution elsewhere",
-    read, plan, sections=sections, run=run, summary=fatal_shock_summary,
+    read, plan, sections=sections, shrink=shrink, run=run, summary=fatal_shock_summary,
     info_lines=fatal_shock_lines,
     info_catalogue=False, options=("workers",), progress_unit="phases",
     keys=KEYS,

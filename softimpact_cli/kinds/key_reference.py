@@ -31,6 +31,27 @@ VARIANTS = (
     ("stability", "t0 = 0.0 ", 't0 = "random" '),
     ("design", "screen_n = ", "robust_n = 40\nscreen_n = "),
 )
+# a chain's design: the keys only a chain's design reads
+CHAIN_DESIGN = """\
+[system]
+model = "chain"
+bodies = 2
+phi = [0.0, "pi"]
+[[stop]]
+between = [1, 2]
+d = 5.0
+[analysis]
+kind = "design"
+target = "L1^1 R1-0^1"
+bounds = {"stop.1.d" = [1.0, 10.0], "phi.2" = ["pi/2", "pi"]}
+grid_points = 12
+[initial_conditions]
+kind = "random"
+n = 100
+box = {x1 = [-4, 4], v1 = [-4, 4], x2 = [-4, 4], v2 = [-4, 4]}
+[catalogue]
+grid = 4
+"""
 LIST_SCENE = """\
 [system]
 model = "duffing"
@@ -61,6 +82,7 @@ def _scenes() -> list[tuple[str, str]]:
     scenes.append(("stability", LIST_SCENE))
     chain = CHAIN_EXAMPLE.replace('law = "paper" ', 'law = "hunt-crossley"\nexponent = 1.5 ', 1)
     scenes.append(("trajectory", chain))  # the chain's [system] keys, [[stop]], [[kink]]
+    scenes.append(("design", CHAIN_DESIGN))  # a chain's design keys (grid_points)
     return scenes
 
 

@@ -12,6 +12,7 @@ from ..analysis.lyapunov_scans import (
     parameter_spectra,
     trajectory_spectrum,
 )
+from ..config.chain_scene import CHAIN
 from ..config.reader import ConfigError
 from ..config.scene import thin
 from ..config.sweep import read_grid
@@ -29,9 +30,9 @@ class LyapunovAnalysis:
     """[analysis] kind = "lyapunov".
 
     start : "state" (the trajectory from ``state`` at ``t0``; with [grid], one spectrum
-        per value of its one swept axis) or "catalogue" (every solution of the [catalogue]
-        search: one body's attractors or a pair's combinations, with their Floquet
-        exponents beside)
+        per value of its one swept axis: a chain's by name) or "catalogue" (every solution
+        of the [catalogue] search: one body's attractors, a pair's combinations or a
+        chain's products, with their Floquet exponents beside)
     periods, transient, segments : forcing periods averaged, discarded before, and the
         segments whose spread gives the standard error (periods a multiple of segments)
     per_period : Gram-Schmidt re-orthonormalisations per period
@@ -83,12 +84,14 @@ def sections(analysis, ctx) -> Sections:
     ctx.refuse("initial_conditions", "catalogue")
     if "grid" not in ctx.doc:
         return Sections(analysis)
+    chain = ctx.system.model == CHAIN
     grid = read_grid(ctx.source, ctx.doc, ctx.values, ctx.system.bodies, ctx.period,
-                     ctx.check_axis)
+                     ctx.check_axis, ctx.system.parameter_names if chain else (), chain)
     if len(grid.swept) != 1 or grid.panels:
+        allowed = ("any of the chain's parameters by name (w, F.2, stop.1.d, ...) or t0"
+                   if chain else "one of d, phi, k_c, c_c, t0")
         raise ConfigError(f"{ctx.source}: [grid]: lyapunov follows one parameter; give one "
-                          f"axis (one of d, phi, k_c, c_c, t0), got "
-                          f"{', '.join(grid.swept) or 'panels'}")
+                          f"axis ({allowed}), got {', '.join(grid.swept) or 'panels'}")
     axis = grid.swept[0]
     return Sections(replace(analysis, axis=axis, values=tuple(grid.axes[axis])), grid)
 

@@ -47,14 +47,16 @@ def _read_analysis(sec: Section, ctx: SceneContext):
 # What a chain (model = "chain", systems/chain.py) can run today, and why the others cannot
 # yet: said in one line when the scene is read, before anything runs.
 CHAIN_KINDS = ("trajectory", "lyapunov", "dcrit", "bifurcation", "catalogue", "basins",
-               "stability", "map", "continuation", "fractality", "fatal_shock", "tipping")
+               "stability", "map", "continuation", "fractality", "fatal_shock", "tipping",
+               "design")
 CHAIN_REFUSALS = {
-    "design": ("it searches a pair's (d, phi) plane of critical distances; a chain's "
-               "region over its stops and phases is not built yet: kind \"map\" gives "
-               "which products survive over two parameters, kind \"stability\" a "
-               "point's basin stability"),
-    "atlas": ("it seeds its curves from a pair's combinations and follows them in "
-              "(d, phi); on a chain kind \"dcrit\" gives each stop's critical values"),
+    "atlas": ("it seeds its bifurcation curves from a pair's combinations and continues "
+              "them in two of the pair's parameters; on a chain, kind \"continuation\" "
+              "finds the folds, period doublings and Neimark-Sacker points of its orbits "
+              "along any one parameter by name, kind \"dcrit\" where a stop starts to touch "
+              "each non-impacting product (its grazing) against any parameter, kind "
+              "\"design\" where only one product survives, and kind \"map\" which "
+              "attractors coexist over two parameters"),
 }
 
 

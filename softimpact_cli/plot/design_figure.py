@@ -9,7 +9,7 @@ import numpy as np
 
 from ..analysis.labels import latex_of
 from ..config.axes import COUPLING_AXES
-from ..report.info import design_summary
+from ..report.info import design_axes, design_summary
 from .common import (
     panel_letter,
     parameter_text,
@@ -161,9 +161,70 @@ def _bars(ax, s: dict) -> None:
     ax.legend(fontsize=7, loc="upper center", ncols=2, frameon=False)
 
 
-def _robustness(ax, s: dict, relative: float) -> None:
+def _chain_plane(ax, ds, s: dict) -> None:
+    """A chain's region map: the plane of its first two design axes (``map_x_axis``,
+    ``map_y_axis``; the others at the pick), shaded where only the target survives, grey
+    by the number of surviving products elsewhere, with the evaluated points."""
+    from matplotlib.colors import ListedColormap
+
+    x_axis, y_axis = str(ds.attrs["map_x_axis"]), str(ds.attrs["map_y_axis"])
+    xs, ys = ds["map_x"].values, ds["map_y"].values
+    count, target = ds["map_survivors"].values, ds["map_target"].values
+    alone = (count == 1) & (target == 1)
+    shade = np.where(alone, -1, np.minimum(count, 4)).astype(float)
+    cmap = ListedColormap([REGION, "white", "0.88", "0.78", "0.68", "0.58"])
+    y_edges = _edges(ys) if y_axis else np.array([0.0, 1.0])
+    ax.pcolormesh(_edges(xs), y_edges, shade, cmap=cmap, vmin=-1.5, vmax=4.5,
+                  shading="flat")
+    role = [str(r) for r in ds["role"].values]
+    px = ds[f"point_{x_axis}"].values
+    py = ds[f"point_{y_axis}"].values if y_axis else np.full(px.size, 0.5)
+    sel = [i for i, r in enumerate(role) if r == "screened"]
+    if sel:
+        score = ds["score"].values[sel]
+        dots = ax.scatter(px[sel], py[sel], c=score, cmap="viridis", s=22, zorder=3,
+                          vmin=min(float(score.min(initial=1.0)), 0.9), vmax=1.0,
+                          edgecolors="0.2", linewidths=0.4)
+        bar = ax.figure.colorbar(dots, ax=ax, pad=0.01, fraction=0.04)
+        bar.set_label(f"screened: score ({ds.attrs['screen_n']} samples)", fontsize=8)
+    for k, i in enumerate(i for i, r in enumerate(role) if r == "runner-up"):
+        ax.plot(px[i], py[i], "s", color="#ff7f0e", mec="k", ms=7, zorder=4,
+                label="runners-up" if k == 0 else None)
+    moved = [i for i, r in enumerate(role) if r == "perturbed"]
+    ax.plot(px[moved], py[moved], "+", color="k", ms=8, zorder=4, label="perturbed")
+    if "reference" in role:
+        i = role.index("reference")
+        ax.plot(px[i], py[i], "D", color="w", mec="k", ms=8, zorder=4, label="reference")
+    i = role.index("best")
+    ax.plot(px[i], py[i], "*", color="#d62728", mec="k", ms=16, zorder=5, label="pick")
+    ax.fill_between([], [], color=REGION, label=f"only {latex_of(s['target'])} survives")
+    ax.set_xlabel(x_axis)
+    if x_axis.startswith("phi."):
+        pi_ticks(ax.xaxis, *ax.get_xlim(), max_ticks=7)
+    if y_axis:
+        ax.set_ylabel(y_axis)
+        if y_axis.startswith("phi."):
+            pi_ticks(ax.yaxis, *ax.get_ylim(), max_ticks=7)
+    else:
+        ax.set_yticks([])
+    others = [a for a in design_axes(ds) if a not in (x_axis, y_axis)]
+    ax.set_title("surviving products (white: none; light grey to dark: 1, 2, 3, 4+)"
+                 + (f"; {', '.join(others)} at the pick" if others else ""), fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0.0, -0.13), ncols=3,
+              frameon=False)
+
+
+def _edges(centres: np.ndarray) -> np.ndarray:
+    """Cell edges around ``centres`` (ascending; one centre: a unit cell)."""
+    if centres.size == 1:
+        return np.array([centres[0] - 0.5, centres[0] + 0.5])
+    mid = 0.5 * (centres[1:] + centres[:-1])
+    return np.concatenate([[2 * centres[0] - mid[0]], mid, [2 * centres[-1] - mid[-1]]])
+
+
+def _robustness(ax, s: dict, relative: float, axes=COUPLING_AXES) -> None:
     best = s["best"]
-    for j, axis in enumerate(COUPLING_AXES):
+    for j, axis in enumerate(axes):
         rows = sorted([p for p in s["robustness"] if p["parameter"] == axis],
                       key=lambda p: p["step"])
         rows = rows[: len(rows) // 2] + [{**best, "step": 0}] + rows[len(rows) // 2:] \
@@ -174,7 +235,7 @@ def _robustness(ax, s: dict, relative: float) -> None:
         share = np.array([p["share"] for p in rows])
         err = np.array([[p["share"] - p["ci95"][0], p["ci95"][1] - p["share"]] for p in rows])
         line = ax.errorbar(steps, share, yerr=err.T, marker="o", ms=4, capsize=2, lw=1,
-                           label=f"${AXIS_TEX[axis]}$")
+                           label=f"${AXIS_TEX[axis]}$" if axis in AXIS_TEX else axis)
         gone = [k for k, p in enumerate(rows) if p["target_exists"] is False]
         ax.plot(steps[gone], share[gone], "x", color=line[0].get_color(), ms=10, mew=2)
     low = min([p["ci95"][0] for p in s["robustness"]] + [best["ci95"][0]])
@@ -191,6 +252,8 @@ def draw_design(ds, ax=None):
     the basin stability at the pick, the perturbations (``ax``: 4 Axes in that order, or
     a Figure; see ``plot``); returns the matplotlib Figure."""
     s = design_summary(ds)
+    if ds.attrs.get("model") == "chain":
+        return _draw_chain_design(ds, s, ax)
     fig, axs = place_panels(ax, (1, 4), [(0, k) for k in range(4)], figsize=(20.0, 5.8),
                             gridspec_kw={"width_ratios": [1.5, 0.9, 1.0, 1.0]})
     _plane(axs[0], ds, s)
@@ -205,4 +268,23 @@ def draw_design(ds, ax=None):
         f"{b['d']:.4g}, $\\varphi = {phase_text(b['phi'])}$, $k_c$ = {b['k_c']:.4g}, $c_c$ = "
         f"{b['c_c']:.4g}; samples in {ds.attrs.get('sample_box', '?')}, {start_text(ds)}\n"
         f"{parameter_text(ds, exclude=('d', 'phi', 'k_c', 'c_c', 'law'))}", fontsize=9)
+    return root_figure(fig)
+
+
+def _draw_chain_design(ds, s: dict, ax=None):
+    """A chain's design: its region map, the basin stability at the pick, the
+    perturbations (``ax``: 3 Axes or a Figure)."""
+    fig, axs = place_panels(ax, (1, 3), [(0, k) for k in range(3)], figsize=(17.0, 5.8),
+                            gridspec_kw={"width_ratios": [1.4, 1.0, 1.0]})
+    _chain_plane(axs[0], ds, s)
+    _bars(axs[1], s)
+    axes = design_axes(ds)
+    _robustness(axs[2], s, float(ds.attrs["perturbation"]), axes)
+    for k, a in enumerate(axs):
+        panel_letter(a, k)
+    b = s["best"]
+    pick = ", ".join(f"{a} = {b[a]:.4g}" for a in axes)
+    fig.suptitle(f"chain of {ds.attrs.get('bodies', '?')} bodies: design for "
+                 f"{latex_of(s['target'])}; pick {pick}; samples in "
+                 f"{ds.attrs.get('sample_box', '?')}, {start_text(ds)}", fontsize=9)
     return root_figure(fig)

@@ -16,13 +16,20 @@ def draw_fatal_shock(ds, ax=None):
     mag = ds["shock_magnitude"].values
     finite = np.where(np.isfinite(mag), mag, np.nan)
     has = np.isfinite(mag).any(axis=1)
-    low = np.full(phase.size, np.nan)
-    q1, med, q3 = (np.full(phase.size, np.nan) for _ in range(3))
-    low[has] = np.nanmin(finite[has], axis=1)
-    q1[has], med[has], q3[has] = np.nanpercentile(finite[has], [25, 50, 75], axis=1)
-    panel.fill_between(phase, q1, q3, alpha=0.25, label="quartiles over directions")
-    panel.plot(phase, med, "-", label="median over directions")
-    panel.plot(phase, low, "o-", label="smallest (per phase)")
+    if has.any():
+        low = np.full(phase.size, np.nan)
+        q1, med, q3 = (np.full(phase.size, np.nan) for _ in range(3))
+        low[has] = np.nanmin(finite[has], axis=1)
+        q1[has], med[has], q3[has] = np.nanpercentile(finite[has], [25, 50, 75], axis=1)
+        panel.fill_between(phase, q1, q3, alpha=0.25, label="quartiles over directions")
+        panel.plot(phase, med, "-", label="median over directions")
+        panel.plot(phase, low, "o-", label="smallest (per phase)")
+    else:  # every kick survives: the scan's reach at each phase scanned is the result
+        max_shock = float(ds.attrs["max_shock"])
+        panel.plot(phase, np.full(phase.size, max_shock), "k^--",
+                   label=f"no fatal shock up to {max_shock:g} (every kick survives)")
+        panel.set_xlim(0.0, 1.0)
+        panel.set_ylim(top=1.15 * max_shock)
     if np.isfinite(ds.attrs.get("mfs", np.inf)):
         t = float(ds.attrs["mfs_time"]) / T
         panel.plot([t], [float(ds.attrs["mfs"])], "r*", ms=14,

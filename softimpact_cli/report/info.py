@@ -137,13 +137,32 @@ def catalogue_summary(ds) -> dict:
     if "combination_name" in ds:
         out["combinations"] = [str(n) for n in ds["combination_name"].values]
     if "combination_survives" in ds:  # a chain's: each stop's critical values
-        out["stops"] = [float(v) for v in ds["stop_value"].values]
         out["critical"] = {str(n): [float(v) for v in row] for n, row in zip(
             ds["combination_name"].values, ds["combination_critical"].values, strict=True)}
-        out["surviving"] = [str(n) for n, ok in zip(
-            ds["combination_name"].values, ds["combination_survives"].values, strict=True)
-            if ok]
+        out.update(surviving_summary(ds))
     return out
+
+
+def surviving_summary(ds) -> dict:
+    """A chain's surviving products: ``stops`` (each stop's value) and ``surviving``
+    (names) at its one point, or for a sweep of several grid points
+    ``surviving_per_point``: [{the point's values, "stops", "surviving"}, ...] (a sweep
+    stores each point's own, ``sweep.result.point_survival``)."""
+    names = [str(n) for n in ds["combination_name"].values]
+    survives, stops = ds["combination_survives"], ds["stop_value"]
+    if survives.ndim == 1 or survives.size == len(names):  # one point
+        alive = np.ravel(survives.values)
+        return {"stops": [float(v) for v in np.ravel(stops.values)],
+                "surviving": [n for n, ok in zip(names, alive, strict=True) if ok]}
+    dims = grid_dims(ds)
+    survives = survives.transpose(*dims, "combination").values
+    stops = stops.transpose(*dims, "stop").values
+    points = []
+    for index in np.ndindex(*survives.shape[:-1]):
+        points.append({**grid_point(ds, index), "stops": [float(v) for v in stops[index]],
+                       "surviving": [n for n, ok in zip(names, survives[index], strict=True)
+                                     if ok]})
+    return {"surviving_per_point": points}
 
 
 def format_catalogue(ds) -> str:
@@ -161,7 +180,7 @@ def format_catalogue(ds) -> str:
     if "combinations" in summary:
         names = summary["combinations"]
         lines.append(f"combinations ({len(names)}): " + ", ".join(names))
-    if "critical" in summary:  # a chain's products: each stop's critical value
+    if "critical" in summary and "surviving" in summary:  # a chain's products at one point
         stops = summary["stops"]
         width = max(len(n) for n in summary["critical"]) if summary["critical"] else 10
         lines.append(f"{'product':{width}s} " + " ".join(
@@ -171,6 +190,18 @@ def format_catalogue(ds) -> str:
                          + f"  {'yes' if name in summary['surviving'] else 'no'}")
         lines.append(f"surviving ({len(summary['surviving'])}): "
                      + (", ".join(summary["surviving"]) or "none"))
+    elif "critical" in summary:  # a sweep's: the critical values, each point's survivors
+        width = max(len(n) for n in summary["critical"]) if summary["critical"] else 10
+        n_stops = len(next(iter(summary["critical"].values()), []))
+        lines.append(f"{'product':{width}s} " + " ".join(
+            f"{f'stop {s}':>14s}" for s in range(1, n_stops + 1)))
+        for name, row in summary["critical"].items():
+            lines.append(f"{name:{width}s} " + " ".join(f"{v:14.6f}" for v in row))
+        for point in summary["surviving_per_point"]:
+            where = ", ".join(f"{k}={v:g}" for k, v in point.items()
+                              if k not in ("stops", "surviving") and isinstance(v, float))
+            lines.append(f"surviving at {where} ({len(point['surviving'])}): "
+                         + (", ".join(point["surviving"]) or "none"))
     return "\n".join(lines)
 
 
@@ -308,6 +339,15 @@ def _finite(value):
     return None if isinstance(value, float) and not np.isfinite(value) else value
 
 
+MARGIN_KEYS = ("relative", "d_to_target", "d_to_boundary", "phi_to_boundary",
+               "body_to_boundary")  # a pair's margins, and a chain's (body axes)
+
+
+def design_axes(ds) -> tuple[str, ...]:
+    """The axes of a design result: d, phi, k_c, c_c (a pair) or a chain's parameters."""
+    return tuple(str(a) for a in np.atleast_1d(ds.attrs.get("design_axes", COUPLING_AXES)))
+
+
 def design_point(ds, i: int) -> dict:
     """One evaluated point of a design: parameters, target and impacting shares with 95%
     Wilson intervals, score, margins, and the target's existence and multipliers there."""
@@ -318,7 +358,7 @@ def design_point(ds, i: int) -> dict:
     exists = int(ds["target_exists"].values[i])
     mult = ds["multiplier_re"].values[i] + 1j * ds["multiplier_im"].values[i]
     return _finite({
-        **{a: float(ds[f"point_{a}"].values[i]) for a in COUPLING_AXES},
+        **{a: float(ds[f"point_{a}"].values[i]) for a in design_axes(ds)},
         "n": int(ds["n_samples"].values[i]),
         "share": float(share[t]), "ci95": [float(lo[t]), float(hi[t])],
         "impacting_share": float(share[m]), "impacting_ci95": [float(lo[m]), float(hi[m])],
@@ -326,7 +366,7 @@ def design_point(ds, i: int) -> dict:
         else 0.0,
         "score": float(ds["score"].values[i]),
         "margin": {k: float(ds[f"margin_{k}"].values[i])
-                   for k in ("relative", "d_to_target", "d_to_boundary", "phi_to_boundary")},
+                   for k in MARGIN_KEYS if f"margin_{k}" in ds},
         "target_exists": None if exists < 0 else bool(exists),
         "multipliers": [[float(z.real), float(z.imag)] for z in mult] if exists == 1 else None,
         "shares": {g: float(share[j]) for j, g in enumerate(group) if share[j] > 0},
@@ -362,13 +402,22 @@ def format_design(ds) -> str:
     s = design_summary(ds)
     head = (f"design for {s['target']}: {s['screened']} candidates screened on "
             f"{s['screen_n']} samples; shares with 95% Wilson intervals")
-    lines = [head, f"{'':10s} {'d':>8s} {'phi':>8s} {'k_c':>7s} {'c_c':>7s} {'n':>5s} "
+    chain = ds.attrs.get("model") == "chain"
+    axes = design_axes(ds)
+    if chain:  # a chain's axes by name, each as wide as its name
+        widths = {a: max(len(a), 8) for a in axes}
+        columns = " ".join(f"{a:>{widths[a]}s}" for a in axes)
+    else:
+        columns = f"{'d':>8s} {'phi':>8s} {'k_c':>7s} {'c_c':>7s}"
+    lines = [head, f"{'':10s} {columns} {'n':>5s} "
                    f"{'target share [95%]':>24s} {'impacting':>9s} {'unresolved':>10s} "
                    f"{'margin':>7s} {'d-d_crit':>8s}"]
 
     def row(name: str, p: dict) -> str:
         ci = p["ci95"]
-        return (f"{name:10s} {p['d']:8.4f} {p['phi']:8.4f} {p['k_c']:7.3f} {p['c_c']:7.3f} "
+        at = (" ".join(f"{p[a]:{widths[a]}.4f}" for a in axes) if chain else
+              f"{p['d']:8.4f} {p['phi']:8.4f} {p['k_c']:7.3f} {p['c_c']:7.3f}")
+        return (f"{name:10s} {at} "
                 f"{p['n']:5d} {p['share']:7.3f} [{ci[0]:.3f}, {ci[1]:.3f}] "
                 f"{p['impacting_share']:9.3f} {p['unresolved_share']:10.3f} "
                 f"{p['margin']['relative']:7.3f} "

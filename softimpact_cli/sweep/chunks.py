@@ -11,6 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analysis.catalogue import Catalogue, label_orbit
+from ..analysis.chain_catalogue import stop_values
+from ..analysis.chain_dcrit import stop_coefficients
 from ..analysis.engine import KnownOrbits, Problem, RecurrenceCells, classify_state
 from ..analysis.impacting import ImpactingOrbits
 from ..analysis.labels import code_of
@@ -60,7 +62,8 @@ class SweepContext:
     catalogue's parameters over the grid (``config.axes.catalogue_key``: phi, and the
     body's parameters when they are swept); known : per catalogue key, the stable
     non-impacting orbits a trajectory may be captured by, as (section points (q, dim) in
-    time order, d_crit) pairs (None: no capture); chain : the structure of a chain
+    time order, d_crit) pairs, a chain's (points, each stop's critical value (n_stops,))
+    (None: no capture); chain : the structure of a chain
     (``model = "chain"``: its system is built from it), None for a preset.
     """
 
@@ -90,14 +93,32 @@ class SweepContext:
         s = self.integrator
         if self.known is None or s.capture_tol <= 0.0:
             return None
-        d = float(values.get("d", np.inf))
-        keep = []
-        for points, d_crit in self.known.get(self.catalogue_key(values), ()):
-            radius = s.capture_tol * max(1.0, float(np.max(np.abs(points))))
-            if d_crit + CAPTURE_MARGIN * radius < d:
-                keep.append((points, d_crit - d))
+        if self.chain is not None:
+            keep = self._chain_known(values)
+        else:
+            d = float(values.get("d", np.inf))
+            keep = []
+            for points, d_crit in self.known.get(self.catalogue_key(values), ()):
+                radius = s.capture_tol * max(1.0, float(np.max(np.abs(points))))
+                if d_crit + CAPTURE_MARGIN * radius < d:
+                    keep.append((points, d_crit - d))
         return KnownOrbits.from_orbits([o for o, _ in keep], [g for _, g in keep],
                                        s.capture_tol, s.capture_hits, self.states.shape[1])
+
+    def _chain_known(self, values: dict) -> list[tuple[np.ndarray, float]]:
+        """A chain's known orbits at ``values``: (points, max of the contact functions)
+        of the products every stop clears by CAPTURE_MARGIN capture radii (each stop's
+        contact function peaks at ``sign * (critical - stop)``, ``chain_dcrit``)."""
+        system = self.system()
+        stops = stop_values(system, values)
+        signs = np.array([stop_coefficients(system, i)[1] for i in range(1, stops.size + 1)])
+        keep = []
+        for points, critical in self.known.get(self.catalogue_key(values), ()):
+            radius = self.integrator.capture_tol * max(1.0, float(np.max(np.abs(points))))
+            clearance = signs * (stops - critical)  # > 0: the stop is not reached
+            if np.all(clearance > CAPTURE_MARGIN * radius):
+                keep.append((points, -float(np.min(clearance, initial=np.inf))))
+        return keep
 
     def catalogue_key(self, values: dict) -> tuple[float, ...]:
         """The key of ``catalogues`` and ``known`` that serves these parameter values."""

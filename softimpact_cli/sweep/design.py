@@ -40,6 +40,33 @@ def pair_catalogue(scene: Scene, search: BodySearch, phi: float) -> Catalogue:
                             *search)
 
 
+def classify(scene: Scene, executor, grid: Grid, catalogues: dict, names: tuple[str, ...],
+             t0_per_sample: np.ndarray | None, start: int, stop: int,
+             progress: Callable[[int], Callable[[int], None]] | None = None) -> np.ndarray:
+    """Label codes (points, stop - start) of the samples [start, stop) of [initial_conditions]
+    at each point of the panels ``grid`` (``catalogues`` by catalogue key, ``names`` their
+    names in code order), classified on ``executor`` as a sweep's chunks are."""
+    context = sweep_context(replace(scene, grid=grid), catalogues, names, t0_per_sample)
+    context = replace(context, states=context.states[start:stop], t0=context.t0[start:stop])
+    points = grid.size
+    total = points * (stop - start)
+    block = CELL_BLOCK if scene.integrator.cell_size > 0.0 else 1
+    size = default_chunk_size(total, getattr(executor, "workers", 8), block)
+    chunks = [(i, lo, min(lo + size, total)) for i, lo in enumerate(range(0, total, size))]
+    labels = np.empty(total, dtype=np.int32)
+    recurrent: list = []
+    tick = progress(total) if progress else None
+    for index, result in executor.run(context, chunks):
+        lo = chunks[index][1]
+        labels[lo: lo + len(result["label"])] = result["label"]
+        recurrent += unpack(result)
+        if tick:
+            tick(len(result["label"]))
+    # the second stage's attractors, named over this batch in flat-index order
+    relabel(context, labels, {}, recurrent, tuple(scene.system.state_names))
+    return labels.reshape(points, stop - start)
+
+
 def run_design(scene: Scene, workers: int | None = None, scheduler: str | None = None,
                echo: Callable[[str], None] = lambda s: None,
                progress: Callable[[int], Callable[[int], None]] | None = None) -> xr.Dataset:
@@ -81,25 +108,8 @@ def run_design(scene: Scene, workers: int | None = None, scheduler: str | None =
         grid = Grid({**axes, "t0": (0.0,) * len(points)}, AXES, panels=True)
         batch = {catalogue_key(scene.system, {**scene.values, "phi": float(p["phi"])}):
                  catalogues[float(p["phi"])] for p in points}
-        context = sweep_context(replace(scene, grid=grid), batch, names, t0_per_sample)
-        context = replace(context, states=context.states[start:stop],
-                          t0=context.t0[start:stop])
-        total = len(points) * (stop - start)
-        block = CELL_BLOCK if scene.integrator.cell_size > 0.0 else 1
-        size = default_chunk_size(total, getattr(executor, "workers", 8), block)
-        chunks = [(i, lo, min(lo + size, total)) for i, lo in enumerate(range(0, total, size))]
-        labels = np.empty(total, dtype=np.int32)
-        recurrent: list = []
-        tick = progress(total) if progress else None
-        for index, result in executor.run(context, chunks):
-            lo = chunks[index][1]
-            labels[lo: lo + len(result["label"])] = result["label"]
-            recurrent += unpack(result)
-            if tick:
-                tick(len(result["label"]))
-        # the second stage's attractors, named over this batch in flat-index order
-        relabel(context, labels, {}, recurrent, tuple(scene.system.state_names))
-        return labels.reshape(len(points), stop - start)
+        return classify(scene, executor, grid, batch, names, t0_per_sample, start, stop,
+                        progress)
 
     try:
         ds = design(scene.system, dict(scene.values), search.attractors, a, ic.count,

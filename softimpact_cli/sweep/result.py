@@ -8,9 +8,10 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.attributes import attribute_list
+from ..analysis.chain_catalogue import stop_values, survival
 from ..analysis.labels import latex_of, name_of
 from ..config import Scene, forcing_period
-from ..config.axes import GRID_AXES, axis_units
+from ..config.axes import GRID_AXES, axis_units, catalogue_key
 from ..config.chain_scene import CHAIN
 from .chunks import RESULT_FIELDS
 
@@ -172,3 +173,33 @@ def grid_point(ds, index: tuple[int, ...]) -> dict:
     if ds.attrs.get("t0_mode") == "random":
         point["t0"] = "random"
     return point
+
+
+def point_survival(ds: xr.Dataset, system, values: dict, catalogues: dict) -> xr.Dataset:
+    """A chain's sweep ``ds`` with which products survive at each grid point: the
+    variables ``combination_survives`` (grid dims..., combination) and ``stop_value``
+    (grid dims..., stop) replace the catalogue table's, which say it at one point only.
+
+    Each point reads its own catalogue (``catalogues``, by ``config.axes.catalogue_key``)
+    at its own stop values (``chain_catalogue.survival``); a product is the stored one of
+    that name (``combination_name``), 0 where the point's catalogue has no such name."""
+    dims = grid_dims(ds)
+    shape = tuple(ds.sizes[d] for d in dims)
+    names = [str(n) for n in ds["combination_name"].values]
+    parameters = set(system.parameter_names)
+    n_stops = ds.sizes.get("stop", 0)
+    survives = np.zeros(shape + (len(names),), dtype=np.int8)
+    stops = np.zeros(shape + (n_stops,))
+    for index in np.ndindex(*shape):
+        at = {**values, **{a: v for a, v in grid_point(ds, index).items() if a in parameters}}
+        cat = catalogues[catalogue_key(system, at)]
+        alive = dict(zip(cat.names, survival(system, at, cat.critical), strict=True))
+        survives[index] = [alive.get(name, False) for name in names]
+        stops[index] = stop_values(system, at)
+    return ds.assign(
+        combination_survives=(dims + ("combination",), survives,
+                              {"long_name": "1: no stop touches it at the grid point's "
+                                            "values (each point its own)"}),
+        stop_value=(dims + ("stop",), stops,
+                    {"long_name": "each stop's gap (between bodies) or wall position at "
+                                  "the grid point", "units": "1"}))

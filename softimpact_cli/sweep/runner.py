@@ -33,7 +33,7 @@ from .chunks import RESULT_FIELDS, SweepContext
 from .executors import make_executor
 from .merge import impacting_numbering, merge_chunk
 from .plan import Plan, chunk_size_for
-from .result import sweep_dataset
+from .result import point_survival, sweep_dataset
 from .second_stage import progress_codes, relabel, unpack
 
 
@@ -70,8 +70,8 @@ def chain_catalogues(scene: Scene, progress=None) -> tuple[dict, tuple[str, ...]
     """:func:`prepare_catalogues` of a chain: its bodies searched (through the catalogue
     cache) once per distinct value of the axes a body's attractors depend on
     (``catalogue_axes``: not the stops'), with the products' critical values; which
-    survive is said at the first grid point of each (``ChainCatalogue.survives``; the
-    labels do not depend on it)."""
+    survive at each grid point is the result's ``combination_survives``
+    (``result.point_survival``; the labels do not depend on it)."""
     system = scene.system
     catalogues = {}
     for values in catalogue_points(scene):
@@ -108,9 +108,10 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
     (``analysis.critical_distance``); which of them exist depends on d, decided per grid
     point by ``SweepContext.known_orbits``.
     """
-    if scene.integrator.capture_tol <= 0.0 or scene.system.model == CHAIN:
-        return None  # a chain: capture by known orbits is not written for its stops yet
-
+    if scene.integrator.capture_tol <= 0.0:
+        return None
+    if scene.system.model == CHAIN:  # each stop's critical values, not a pair's d_crit
+        return chain_capturable_orbits(catalogues)
     check_bodies(scene.system.bodies, "capturable_orbits (d_crit of a pair's x1 - x2 - d)")
     axes = catalogue_axes(scene.system)
     known = {}
@@ -123,6 +124,17 @@ def capturable_orbits(scene: Scene, catalogues: dict) -> dict | None:
         known[key] = [(c.orbit, critical_distance(problem, c.orbit[0], len(c.orbit), 256)[0])
                       for c in cat.combinations if c.left.stable and c.right.stable]
     return known
+
+
+def chain_capturable_orbits(catalogues: dict) -> dict:
+    """:func:`capturable_orbits` of a chain: per catalogue key, its stable products (every
+    body on a stable attractor: with no stop touched the bodies are uncoupled, so the
+    product is a stable orbit of the chain), each as (joint section points (q, 2n),
+    critical values (n_stops,)); which exist at a grid point follows from its stops
+    (``SweepContext.known_orbits``)."""
+    return {key: [(p.orbit, row) for p, row in zip(cat.products, cat.critical, strict=True)
+                  if all(a.stable for a in p.attractors)]
+            for key, cat in catalogues.items()}
 
 
 def sweep_context(scene: Scene, catalogues: dict, names: tuple[str, ...],
@@ -206,6 +218,8 @@ def labelled_dataset(scene: Scene, inputs: SweepInputs, arrays: dict, orbits: di
         ds = after(ds, scene, inputs.first)
     catalogue_vars = catalogue_table(inputs.first, scene.system, scene.integrator)
     ds = xr.merge([ds, catalogue_vars], combine_attrs="override", compat="override")
+    if scene.system.model == CHAIN:  # which products survive depends on each point's stops
+        ds = point_survival(ds, scene.system, dict(scene.values), inputs.catalogues)
     ds.attrs["catalogue_source"] = inputs.first.source  # "computed" or "cache <key>"
     # the search's own counts (the merge keeps the sweep's attrs): report/outcomes.py
     ds.attrs["catalogue_n_samples"] = inputs.first.n_samples

@@ -146,3 +146,31 @@ def test_the_dataset_holds_every_body_and_product(three):
     np.testing.assert_array_equal(ds["combination_critical"].values, cat.critical)
     np.testing.assert_array_equal(ds["combination_survives"].values, cat.survives)
     assert list(ds["stop_value"].values) == [5.0, 6.0, -6.0]
+
+
+def test_identical_bodies_number_one_orbit_alike():
+    """Three identical double-well Duffing bodies (k1 = -1, k2 = 1) forced at phases 0,
+    2 pi/3, 4 pi/3 have the same two in-well P1 orbits, mirror images of one amplitude;
+    body i's are body 1's shifted in time by phi_i / w. Each body's attractor number k
+    must be body 1's number k: the point of body 1's orbit flowed over that shift lies on
+    body i's orbit of the same number (the sampling of max |x|, which differs with the
+    phase, decided the order before)."""
+    body = {"c": 0.2, "k1": -1.0, "k2": 1.0, "F": 0.1}
+    w, phases = 1.0, [0.0, 2 * np.pi / 3, 4 * np.pi / 3]
+    model = ChainModel(3, stops=())
+    system = chain_system(model)
+    values = chain_values(model, w, {**{k: [v] * 3 for k, v in body.items()},
+                                     "phi": phases})
+    states = sample_states({"x": (-2.0, 2.0), "v": (-2.0, 2.0)}, 5, 0, 0)
+    cat = build_chain_catalogue(system, values, SETTINGS, states)
+    first = cat.per_body[0]
+    assert [a.period for a in first] == [1, 1]  # the two wells
+    assert abs(first[0].amplitude - first[1].amplitude) < 1e-9  # mirror images
+    one = Problem(get_system("duffing", 1), {**body, "w": w}, TIGHT)
+    for i, phi in enumerate(phases[1:], 2):
+        assert len(cat.per_body[i - 1]) == 2
+        for attractor in first:
+            _, shifted, _ = flow(one, attractor.points[0], 0.0, phi / w)
+            own = cat.per_body[i - 1][attractor.number - 1]
+            assert own.number == attractor.number
+            np.testing.assert_allclose(own.points[0], shifted, atol=1e-6)

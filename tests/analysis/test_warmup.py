@@ -123,20 +123,47 @@ def test_warm_up_compiles_the_impact_loop_of_every_method_for_rigid_stops():
     assert kernels[2].__name__ == "advance_impacts_rk4_impacts"
 
 
-def _compiled_signatures() -> dict[str, int]:
-    """How many signatures each jitted function of the package has in this process."""
-    from numba.core.registry import CPUDispatcher
+def _signatures() -> dict[str, int]:
+    """{kernel: compiled signatures} of every jitted function of the kernels' and systems'
+    modules in this process, and of the impact loops' advances (``kernels.IMPACT_ADVANCE``,
+    closures no module names); loading one from the disk cache counts as compiling it."""
+    import importlib
+    import pkgutil
 
-    from softimpact_cli.kernels import IMPACT_ADVANCE
+    import softimpact_cli.kernels
+    import softimpact_cli.systems
 
-    found = {f"impacts.{name}": len(d.signatures) for name, d in IMPACT_ADVANCE.items()}
-    for module_name, module in list(sys.modules.items()):
-        if not module_name.startswith("softimpact_cli"):
-            continue
-        for attr, value in vars(module).items():
-            if isinstance(value, CPUDispatcher):
-                found[f"{module_name}.{attr}"] = len(value.signatures)
-    return found
+    out = {f"impacts.{name}": len(d.signatures)
+           for name, d in softimpact_cli.kernels.IMPACT_ADVANCE.items()}
+    for package in (softimpact_cli.kernels, softimpact_cli.systems):
+        for info in pkgutil.iter_modules(package.__path__):
+            module = importlib.import_module(f"{package.__name__}.{info.name}")
+            for name, obj in vars(module).items():
+                if hasattr(obj, "signatures") and hasattr(obj, "py_func"):
+                    out[f"{module.__name__}.{name}"] = len(obj.signatures)
+    return out
+
+
+def test_warm_up_reaches_a_rigid_chains_unresolved_trajectory():
+    """One body on a rigid wall at 0.2 (w = 2.5, r = 0.8) ends the first pass unresolved
+    and goes on to the second stage, whose Lyapunov spectrum runs Benettin inside the
+    impact loop: after the rigid chain's warm-up steps, that trajectory adds no kernel
+    signature (before, it compiled for 14 s on its first run after the install)."""
+    from softimpact_cli.kinds.run import run_scene
+    from softimpact_cli.kinds.scene import parse_scene
+
+    for what, run in warmup._steps("chain"):
+        if what.startswith("chain with a rigid stop"):
+            run()
+    before = _signatures()
+    scene = parse_scene(
+        '[system]\nmodel = "chain"\nbodies = 1\nc = 0.1\nk1 = 1.0\nF = 1.0\n'
+        'phi = "pi/2"\nw = 2.5\n[[stop]]\nbody = 1\nwall = 0.2\nside = "right"\n'
+        'law = "rigid"\nr = 0.8\n[analysis]\nkind = "trajectory"\nstate = [0.0, 0.0]\n')
+    ds = run_scene(scene)
+    assert ds.attrs["second_stage"] != "not run"  # the first pass left it unresolved
+    grown = {k: v for k, v in _signatures().items() if v != before.get(k, 0)}
+    assert not grown, f"compiled after the warm-up: {grown}"
 
 
 def test_the_warm_up_compiles_lyapunov_and_continuation_with_a_rigid_stop():
@@ -154,7 +181,7 @@ def test_the_warm_up_compiles_lyapunov_and_continuation_with_a_rigid_stop():
     for name, step in steps.items():
         if name.startswith("chain with a rigid stop:"):
             step()
-    before = _compiled_signatures()
+    before = _signatures()
     head = """[system]
 model = "chain"
 bodies = 1
@@ -185,5 +212,5 @@ state = [-0.835, -0.339]
 max_points = 3
 switch_depth = 0
 """))
-    after = _compiled_signatures()
+    after = _signatures()
     assert {k: v for k, v in after.items() if before.get(k, 0) != v} == {}

@@ -132,17 +132,14 @@ def test_example_chain_prints_the_commented_scene():
 
 
 @pytest.mark.parametrize("kind, extra, message", [
-    ("design", "", "[analysis] kind = 'design': not yet for model = \"chain\" (it searches "
-                   "a pair's (d, phi) plane of critical distances; a chain's region over its "
-                   "stops and phases is not built yet: kind \"map\" gives which products "
-                   "survive over two parameters, kind \"stability\" a point's basin "
-                   "stability); a chain runs kind 'trajectory' or 'lyapunov' or 'dcrit' or "
-                   "'bifurcation' or 'catalogue' or 'basins' or 'stability' or 'map' or "
-                   "'continuation' or 'fractality' or 'fatal_shock' or 'tipping'"),
     ("atlas", "", "[analysis] kind = 'atlas': not yet for model = \"chain\" (it seeds its "
-                  "curves from a pair's combinations and follows them in (d, phi)"),
-    ("lyapunov", 'start = "catalogue"\n', "[analysis] kind = 'lyapunov': on a chain only from "
-                                          "a state"),
+                  "bifurcation curves from a pair's combinations and continues them in two of "
+                  "the pair's parameters; on a chain, kind \"continuation\" finds the folds, "
+                  "period doublings and Neimark-Sacker points of its orbits along any one "
+                  "parameter by name, kind \"dcrit\" where a stop starts to touch each "
+                  "non-impacting product (its grazing) against any parameter, kind "
+                  "\"design\" where only one product survives, and kind \"map\" which "
+                  "attractors coexist over two parameters); a chain runs kind 'trajectory'"),
 ])
 def test_kinds_a_chain_cannot_run_yet_are_refused_in_one_line(kind, extra, message):
     with pytest.raises(ConfigError) as err:

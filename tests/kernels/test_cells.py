@@ -98,11 +98,15 @@ def test_wider_states_are_refused_not_silently_uncelled():
 
 def test_cells_label_a_five_variable_state_like_no_cells():
     """The energy test's 5-state system (beyond one packed word): cells now serve it, and
-    a trajectory the cells name takes the label its full integration gives."""
+    a trajectory the cells name takes the label its full integration gives. On dopri5,
+    the method of the energy test's own classification: that test's compiled kernel
+    serves this one (the default "auto" compiled another, 40 s of CPU, for a system no
+    run uses; what cells do does not depend on the method)."""
     from softimpact_cli.analysis.engine import Problem, RecurrenceCells, classify_state
     from tests.kernels.test_energy import FREE, WORK_PAIR
 
-    problem = Problem(WORK_PAIR, dict(FREE, d=50.0)).with_integrator(max_periods=400)
+    problem = Problem(WORK_PAIR, dict(FREE, d=50.0)).with_integrator(method="dopri5",
+                                                                     max_periods=400)
     state = [3.0, 0.0, -3.0, 0.0, 0.0]
     plain = classify_state(problem, state)
     cells = RecurrenceCells(0.5, 2, 400)

@@ -11,11 +11,13 @@ import pytest
 
 from softimpact_cli.kernels.numba_cache import cache_dir
 
-# rk4: the method that compiles fastest (the cache's behaviour is the same for every
-# method; the default "auto" compiled two methods here, about 40 s of CPU per process)
+# rk4, the method that compiles fastest, through orbit.flow, the smallest kernel taking
+# the method and the system as arguments (the cache's behaviour is the same for every
+# method and kernel; classify_near on the default "auto" compiled about 40 s of CPU per
+# process, on rk4 about 18 s)
 SCRIPT = """
 import sys
-from softimpact_cli.analysis.engine import Problem, classify_state
+from softimpact_cli.analysis.engine import Problem, flow
 from softimpact_cli.config import IntegratorSettings
 from softimpact_cli.kernels import orbit
 from softimpact_cli.systems import get_system
@@ -24,11 +26,11 @@ rk4 = IntegratorSettings(method="rk4")
 if which == "pair":
     pr = Problem(get_system("duffing", 2), dict(c=0.05, k1=1, k2=0.01, F=1, w=1.3, d=6.0,
                                                phi=0.0, k_c=8, c_c=10, law="paper"), rk4)
-    classify_state(pr, [1.0, 0.0, -1.0, 0.0])
+    flow(pr, [1.0, 0.0, -1.0, 0.0], 0.0, pr.period)
 else:
     pr = Problem(get_system("duffing", 1), dict(c=0.05, k1=1, k2=0.01, F=1, w=1.3), rk4)
-    classify_state(pr, [1.0, 0.0])
-stats = orbit.classify_near.stats  # what classify_state calls
+    flow(pr, [1.0, 0.0], 0.0, pr.period)
+stats = orbit.flow.stats  # what engine.flow calls
 print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()))
 """
 

@@ -88,3 +88,20 @@ def test_the_solution_must_be_named_and_exist(tmp_path, body, message):
     assert run.exit_code == 2 and message in run.output
     assert len(run.output.strip().splitlines()) == 1
     assert not (tmp_path / "x.h5").exists()
+
+
+def test_a_result_where_every_kick_survives_plots(tmp_path):
+    """No kick up to max_shock is fatal (every magnitude inf): the plot
+    draws the scan's reach instead of failing on the empty reductions."""
+    path = tmp_path / "calm.toml"
+    path.write_text(BODY.replace("max_shock = 24.0", "max_shock = 0.05")
+                    .replace("scan = 24", "scan = 2"))
+    out = tmp_path / "calm.h5"
+    runner = CliRunner()
+    run = runner.invoke(main, ["sweep", str(path), "-o", str(out), "-q"])
+    assert run.exit_code == 0, run.output
+    assert np.all(np.isinf(si.open_result(out)["shock_magnitude"].values))
+    png = tmp_path / "calm.png"
+    run = runner.invoke(main, ["plot", "fatal_shock", str(out), "-o", str(png)])
+    assert run.exit_code == 0, run.output
+    assert png.stat().st_size > 10_000

@@ -189,3 +189,32 @@ path = "{out}"
     assert result.exit_code == 2
     assert len(result.output.strip().splitlines()) == 1 and "saltation" in result.output
     assert not out.exists()
+
+
+@pytest.mark.parametrize("w, wall, impacts", [(1.2, 1.2, 1), (0.65, 0.3, 2)])
+def test_a_rigid_impacting_orbit_counts_its_impacts_per_period(tmp_path, w, wall, impacts):
+    """The sweep kinds count a rigid orbit's impacts as they count a soft stop's contact
+    onsets (``contacts``: per orbit of one period, here): Shaw and Holmes's period-1
+    single-impact orbit (w = 1.2, wall 1.2 A) has 1, a period-1 orbit hitting twice
+    (w = 0.65, wall 0.3 A) has 2, as scipy's event integration counts over one period
+    after 300; both are named "impacting P1"."""
+    sigma = wall * amplitude(ZETA, w)
+    start = [0.0, 0.0]
+    if impacts == 1:  # the closed form's stable (fast) orbit
+        start = max(period_one(ZETA, w, sigma, R), key=lambda o: o[1])[2].tolist()
+    scene = parse_scene(oscillator(w, sigma, f"""[analysis]
+kind = "basins"
+[initial_conditions]
+kind = "list"
+states = [{start}]
+"""))
+    ds = run_sweep(scene, tmp_path / "b.h5", workers=1)
+    names = dict(zip(ds["label_code"].values.tolist(), ds["label_name"].values.tolist(),
+                     strict=True))
+    assert names[int(ds["label"].values.ravel()[0])] == "impacting P1"
+    assert int(ds["period"].values.ravel()[0]) == 1
+    assert int(ds["contacts"].values.ravel()[0]) == impacts
+    _, before = scipy_sections(ZETA, w, sigma, R, start, 300, rtol=1e-10, atol=1e-12)
+    sections, after = scipy_sections(ZETA, w, sigma, R, start, 301, rtol=1e-10, atol=1e-12)
+    assert np.max(np.abs(sections[-1] - sections[-2])) < 1e-6  # settled on a period-1 orbit
+    assert after - before == impacts

@@ -274,3 +274,91 @@ def test_a_chains_tipping_sends_the_products_the_new_gap_touches_elsewhere(tmp_p
     rows = ds["tip_probability"].sum("tip_to").values
     assert np.allclose(rows[np.isfinite(rows) & (rows > 0)], 1.0)
     assert len(plot.tipping(ds).axes) >= 3  # before, after, the tipping matrix
+
+
+GAPS = """\
+[system]
+model = "chain"
+bodies = 2
+k2 = 0.05
+F = 1.5
+w = 1.4
+phi = [0.0, "5*pi/8"]
+
+[[stop]]
+between = [1, 2]
+d = 5.0
+
+[catalogue]
+grid = 4
+random = 0
+box = {x = [-4.0, 4.0], v = [-4.0, 4.0]}
+
+[analysis]
+kind = "stability"
+
+[initial_conditions]
+kind = "random"
+n = 10
+box = {x1 = [-4, 4], v1 = [-4, 4], x2 = [-4, 4], v2 = [-4, 4]}
+"""
+
+
+def test_each_gap_of_a_chain_sweep_stores_its_own_surviving_products(tmp_path):
+    """Over stop.1.d = [4, 6.5] the products' critical gaps (about 2.95, 4.72, 5.92,
+    9.27) leave one surviving product at 4 and three at 6.5: each point stores its own
+    (the scene at that gap alone says the same), its labels are that scene's, and a
+    non-impacting label is one of that point's survivors."""
+    ds = run_sweep(parse_scene(GAPS + "\n[grid]\nstop.1.d = [4.0, 6.5]\n"),
+                   tmp_path / "s.h5", workers=1)
+    survives = ds["combination_survives"].squeeze(drop=True)
+    assert survives.dims == ("stop.1.d", "combination")
+    names = [str(n) for n in ds["combination_name"].values]
+    table = dict(zip(ds["label_code"].values.tolist(),
+                     (str(n) for n in ds["label_name"].values), strict=True))
+    survivors = []
+    for i, gap in enumerate((4.0, 6.5)):
+        alone = run_sweep(parse_scene(GAPS.replace("d = 5.0", f"d = {gap}")),
+                          tmp_path / f"a{i}.h5", workers=1)
+        expected = alone["combination_survives"].values.ravel()
+        np.testing.assert_array_equal(survives.isel({"stop.1.d": i}).values, expected)
+        assert float(ds["stop_value"].squeeze(drop=True).isel({"stop.1.d": i})) == gap
+        alone_table = dict(zip(alone["label_code"].values.tolist(),
+                               (str(n) for n in alone["label_name"].values), strict=True))
+        labels = [table[int(c)] for c in ds["label"].isel({"stop.1.d": i}).values.ravel()]
+        assert labels == [alone_table[int(c)] for c in alone["label"].values.ravel()]
+        alive = {n for n, ok in zip(names, expected, strict=True) if ok}
+        assert all(label in alive for label in labels if label in names)
+        survivors.append(alive)
+    assert len(survivors[0]) == 1 and len(survivors[1]) == 3
+    text = format_summary(describe(ds), ds)
+    assert "surviving at stop.1.d=4, t0=0 (1): L1^1 R1-0^1" in text
+    assert "surviving at stop.1.d=6.5, t0=0 (3): " in text
+
+
+def test_capture_by_known_products_keeps_a_chains_labels(tmp_path):
+    """Capture by known orbits on a chain (the stable products each point's stops leave,
+    by CAPTURE_MARGIN capture radii): over stop.1.d = [4, 6.5] the labels, statuses and
+    periods are those of the same sweep with capture off, some starts are captured,
+    and only where that point's catalogue says the product survives."""
+    grid = "\n[grid]\nstop.1.d = [4.0, 6.5]\n"
+    captured = run_sweep(parse_scene(GAPS + grid), tmp_path / "c.h5", workers=1)
+    plain = run_sweep(parse_scene(GAPS + grid + "\n[integrator]\ncapture_tol = 0.0\n"),
+                      tmp_path / "p.h5", workers=1)
+    assert list(captured["label_name"].values) == list(plain["label_name"].values)
+    for var in ("label", "status", "period"):
+        np.testing.assert_array_equal(captured[var].values, plain[var].values)
+    how = captured["captured"].values
+    assert np.sum(how == 1) > 0 and np.sum(plain["captured"].values == 1) == 0
+    names = dict(zip(captured["label_code"].values.tolist(),
+                     (str(n) for n in captured["label_name"].values), strict=True))
+    survives = captured["combination_survives"].squeeze(drop=True)
+    products = [str(n) for n in captured["combination_name"].values]
+    for i in range(2):
+        alive = {n for n, ok in zip(products, survives.isel({"stop.1.d": i}).values,
+                                    strict=True) if ok}
+        at = captured.isel({"stop.1.d": i})
+        for code, how_i in zip(at["label"].values.ravel(), at["captured"].values.ravel(),
+                               strict=True):
+            if how_i == 1:
+                assert names[int(code)] in alive
