@@ -20,6 +20,10 @@ factor of order 1 when segments are shorter than a few decorrelation times.
 ``ln |det S|`` per unit time. For one Duffing body, trace J = -c: the sum is -c up to
 the integration error, interval by interval. For the paper's stop, det S = 1 and trace
 J drops by 2 c_c in contact: the sum is ``-2 c - 2 c_c`` x (share of time in contact).
+With a rigid wall (one body) each impact adds ``ln det S = 2 ln r`` (the impact loop,
+``kernels/impacts.py``, carries the tangents across its reset; the kernel counts each
+impact as a switch, ``salted`` stays 0); an orbit that sticks on a wall forgets every
+perturbation (S = 0 entering it): its exponents are -inf.
 
 **Periodic orbits.** On a stable period-q orbit the exponents are ``ln|mu_j| / (q T)``
 of its Floquet multipliers: :func:`floquet_exponents`, and the monodromy matrix by

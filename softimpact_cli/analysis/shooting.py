@@ -19,7 +19,11 @@ fundamental matrix jumps by the saltation matrix there (``kernels/saltation.py``
 Benettin kernel of ``kernels/lyapunov.py`` applies it at every switch; run over one
 interval of p T from the orthonormal start ``Q0`` whose first column is ``e_j``, its
 Gram-Schmidt step leaves ``Q[:, 0] = M e_j / |M e_j|`` and ``logs[0] = ln |M e_j|``:
-column j of M, exactly (one variational integration per column).
+column j of M, exactly (one variational integration per column). With rigid stops the
+advance is the impact loop (``kernels/impacts.py``), which carries the tangents across each
+impact's reset by its saltation matrix, into sticking and out of it; an impacting rigid
+orbit has ``max_g = 0``, so it takes this path too (the plain variational flow would give
+the same M when no soft stop is touched).
 
 **Parameter derivative.** ``dG/dlam`` by central differences of the flow (the kernels take
 no parameter derivatives), with step ``PARAMETER_STEP * max(1, |lam|)``: accurate to about

@@ -34,6 +34,7 @@ from ..systems.chain import ChainModel, Kink, Stop, chain_system, chain_values
 from .catalogue import SHOOTING, amplitude, orbit_points, refine_orbit
 from .engine import Problem, RecurrenceCells, classify_state, flow, record_trajectory
 from .lyapunov import lyapunov_spectrum
+from .shooting import OrbitMap
 from .step_stability import rk4_step_warning
 
 COLD_MINUTES = 3  # measured: the demo's first sweep on a busy 2-core machine (issue 20)
@@ -147,6 +148,11 @@ def _steps(model: str | None = None) -> list:
         lyapunov_spectrum(Problem(system, defaults_of(system), SHOOTING), state, periods=2,
                           transient=0, segments=2, per_period=2)
 
+    def run_rigid_variational(system):  # kinds lyapunov and continuation, rigid stops
+        run_lyapunov(system)
+        state = np.array([0.0, 1.0])  # an impact within the period: the reset's S
+        OrbitMap(system, defaults_of(system), "stop.1.wall", 1).evaluate(state, 0.4)
+
     steps = []
     if model in (None, "chain"):  # the family: one set of kernels serves every chain
         chain = warmup_chain()
@@ -159,11 +165,14 @@ def _steps(model: str | None = None) -> list:
             if not method_traits(method).closed_form:  # a rigid stop is not linear
                 steps.append((f"chain with a rigid stop: {method}",
                               lambda m=method: run_system(rigid, m)))
-        # a trajectory the first pass leaves unresolved is judged by its Lyapunov spectrum
-        # (nonperiodic.section_spectrum): Benettin with the impact loop of dopri5 (without
-        # it, 14 s of compiling the first time, 2026-11-27)
-        steps.append(("chain with a rigid stop: Lyapunov exponents (Benettin)",
-                      lambda: run_lyapunov(rigid)))
+        # Benettin and the flow with the impact loop of dopri5 on the variational
+        # equations: kinds lyapunov and continuation (the shooting's monodromy), and a
+        # trajectory the first pass leaves unresolved, judged by its Lyapunov spectrum
+        # (nonperiodic.section_spectrum; without it, 14 s of compiling the first time,
+        # 2026-11-27)
+        steps.append(("chain with a rigid stop: Lyapunov exponents (Benettin) and the "
+                      "shooting's monodromy (the impact loop on the variational equations)",
+                      lambda: run_rigid_variational(rigid)))
     for (name, bodies), system in sorted(REGISTRY.items()):
         if model is not None and name != model:
             continue

@@ -30,6 +30,41 @@ The system packs its **impact table** behind its parameters (``chain.py``), its 
 ``2 + bodies`` entries: its contact surface's index (``SURFACE``), ``r``
 (``RESTITUTION``), ``w`` per body (``DIRECTION``).
 
+**Tangent vectors.** With a variational system (``systems/variational.py``: the state is
+``z = (y, vec Phi)``, ``y`` the bodies' ``n = 2 bodies`` entries, read from the impact
+table's size) the loop carries ``Phi`` across every reset, ``Phi <- S Phi``, S the
+saltation matrix of a reset ``y+ = R(y-)`` at ``h(y) = g = 0`` (Fredriksson and Nordmark
+1997; Leine and Nijmeijer 2004; di Bernardo et al. 2008, ch. 2; ``saltation.reset_saltation``):
+
+    S = DR + (f+ - DR f-) grad h^T / (grad h . f-),   DR = I - c (0, w)(0, a)^T,
+
+f- the field before the reset at y-, f+ the field after it at y+ (in the mode after: free,
+or stuck), ``c`` the reset's factor. What this gives, case by case:
+
+- **an impact** (``c = 1 + r``, free on both sides): for one body on a wall, with
+  accelerations a+- just after and before, ``S = [[-r, 0], [(a+ + r a-) / v-, -r]]``,
+  ``det S = r^2 = det DR (grad h . DR^-1 f+) / (grad h . f-)``; its multipliers' product
+  over a period-1 single-impact orbit is ``r^2 exp(-c T / m)``.
+- **entering sticking** (the chatter accumulated, or ``r = 0``; the plastic reset, ``c =
+  1``, f+ the stuck field): the position rows of S are ``I - w a^T`` and the velocity rows
+  ``(I - w a^T)`` plus a time correction: the tangent vectors lose the relative normal
+  displacement and velocity (they lie on the constraint, which the stuck flow keeps), and
+  for two bodies whose damping per mass differs the common velocity takes the drift
+  ``kappa (a . dx)`` that the relative motion's damping gives it while the gap closes (the
+  chatter's integral of ``kappa g'`` is ``kappa`` times the gap closed, whatever the
+  cut-off ``RESOLUTION``); for a wall the whole body's row is 0 (every stuck state is the
+  same). From a tangential contact (``g' = 0``) S is the projection ``I - w a^T`` on both.
+- **while stuck**: the stuck field's variational equations (``chain.chain_jacobian`` sticks
+  the Jacobian's columns as the accelerations are): tangents on the constraint stay there.
+- **release**: the free ``g''`` crosses ``-PULL`` ~ 0, where the stuck and the free fields
+  agree: the field is continuous, S = I (``kernels/lyapunov.py`` sees no crossing there,
+  the surface being unwatched while stuck; entering sticking it sees the contact bit set
+  and a rate ``a . v+ = 0`` exactly, so its S is I: the impact's S is this loop's).
+- a crossing at ``g' <= 0`` (a graze of rounding size): no reset, S = I.
+
+The switch budget is checked after the impacts of a switch are made, so that a caller
+stopping at every switch (Benettin's kernel, budget 0) continues from the reset state.
+
 Counters (``istate``): ``N_IMPACTS`` (impacts, resets made), ``N_CHATTERS`` (chatter
 sequences ended by an accumulation, ``r > 0``), ``N_STICKS`` (sticking phases begun);
 ``fstate[T_STUCK]`` the time spent stuck. The switch budget ``opts[MAX_SWITCHES]``
@@ -52,6 +87,7 @@ from .layout import (
     T_STUCK,
     T_SWITCH,
 )
+from .saltation import apply_to_tangents, reset_saltation
 
 SURFACE, RESTITUTION, DIRECTION = 0, 1, 2  # a rigid stop's block in the impact table
 RESOLUTION = 1e-12  # a chatter flight rising less than this (x max(1, |y|)): accumulated
@@ -75,40 +111,48 @@ def table_start(p):
 
 
 @njit(cache=True)
-def pull(y):
-    """The free g'' below which a stuck stop is released (see PULL)."""
+def table_size(p, at):
+    """The size of a rigid stop's block in the impact table at ``at``: ``2 + bodies``
+    (read from the table's length, ``p``'s end: the table is its tail)."""
+    return (p.shape[0] - at - 2) // int(p[at])
+
+
+@njit(cache=True)
+def pull(y, n):
+    """The free g'' below which a stuck stop is released (see PULL); ``y[:n]`` the state
+    (a variational system's tangent entries behind it are not looked at)."""
     scale = 1.0
-    for k in range(y.shape[0]):
+    for k in range(n):
         scale = max(scale, abs(y[k]))
     return PULL * scale
 
 
 @njit(cache=True)
-def surface_rate(A, s, y):
-    """``g_s'`` at state ``y`` (positions and velocities interleaved: ``x_k = y[2 k]``,
+def surface_rate(A, s, y, n):
+    """``g_s'`` at state ``y[:n]`` (positions and velocities interleaved: ``x_k = y[2 k]``,
     ``v_k = y[2 k + 1]``; a stop's surface reads positions only)."""
     rate = 0.0
-    for k in range(y.shape[0] // 2):
+    for k in range(n // 2):
         rate += A[s, 2 * k] * y[2 * k + 1]
     return rate
 
 
 @njit(cache=True)
-def free_acceleration(rhs, p, t, y, mode, A, s, f):
+def free_acceleration(rhs, p, t, y, mode, A, s, f, n):
     """``g_s''`` of the flow with stop ``s`` free (its bit cleared from ``mode``); > 0:
     the bodies are pushed into the stop."""
     rhs(t, y, p, mode & ~(1 << s), f)
     acc = 0.0
-    for k in range(y.shape[0] // 2):
+    for k in range(n // 2):
         acc += A[s, 2 * k] * f[2 * k + 1]
     return acc
 
 
 @njit(cache=True)
-def plastic(p, block, y):
+def plastic(p, block, y, n):
     """Relative velocity 0 across the stop, momentum kept: a wall's body at rest, two
     bodies at their momentum-weighted mean velocity, the same float for both."""
-    n = y.shape[0] // 2
+    n = n // 2
     first, second = -1, -1
     for k in range(n):
         if p[block + DIRECTION + k] != 0.0:
@@ -127,54 +171,104 @@ def plastic(p, block, y):
 
 
 @njit(cache=True)
-def leave(p, block, y):
-    """Move the bodies of a stop apart by ``NUDGE * max(1, |y|)`` along the surface's
-    normal (momentum-weighted, ``DIRECTION``): ``g`` drops by that much (``a . w = 1``)."""
-    step = NUDGE * pull(y) / PULL
-    for k in range(y.shape[0] // 2):
+def leave(p, block, y, n, gap):
+    """Move the bodies of a stop apart along the surface's normal (momentum-weighted,
+    ``DIRECTION``) to ``g = min(gap, 0) - NUDGE * max(1, |y|)`` (``a . w = 1``), ``gap``
+    its ``g`` now: a stop stuck or grazed a location error inside the surface (seen:
+    2e-13 where an impact was located on a variational system's step, whose size its
+    tangents' error sets) would be seen crossing it again at once, for ever."""
+    step = NUDGE * pull(y, n) / PULL + max(gap, 0.0)
+    for k in range(n // 2):
         y[2 * k] -= step * p[block + DIRECTION + k]
 
 
 @njit(cache=True)
-def leave_released(p, table, released, y):
-    """``leave`` for every stop in the mask ``released``."""
-    at, size, _ = table
-    for k in range(int(p[at])):
-        block = at + 1 + k * size
-        if (released >> int(p[block + SURFACE])) & 1:
-            leave(p, block, y)
+def surface_gap(A, b, s, y, n):
+    """``g_s = A[s] . y[:n] + b[s]``."""
+    g = b[s]
+    for k in range(n):
+        g += A[s, k] * y[k]
+    return g
 
 
 @njit(cache=True)
-def impact(rhs, p, t, y, block, A, s, mode, istate, f):
-    """The reset at a crossing into rigid stop surface ``s`` (``block`` its table entry);
-    returns whether the stop sticks (the chatter accumulated, or ``r = 0`` with the bodies
-    pushed together)."""
-    n = y.shape[0] // 2
+def leave_released(p, table, released, y, A, b):
+    """``leave`` for every stop in the mask ``released``."""
+    at, size, _ = table
+    n = 2 * (size - 2)
+    for k in range(int(p[at])):
+        block = at + 1 + k * size
+        s = int(p[block + SURFACE])
+        if (released >> s) & 1:
+            leave(p, block, y, n, surface_gap(A, b, s, y, n))
+
+
+@njit(cache=True)
+def impact(rhs, p, t, y, n, block, surface, mode, istate, f):
+    """The reset at a crossing into rigid stop surface ``s`` (``surface = (A, b, s)``: the
+    surfaces' rows and offsets, and its index; ``block`` its table entry) of the state
+    ``y[:n]``; returns (whether the stop sticks (the chatter accumulated, or ``r =
+    0`` with the bodies pushed together), the factor c of the velocity reset made, ``v+ =
+    v- - c g'(v-) w``: 1 + r, or 0 when no reset)."""
+    A, b, s = surface
     r = p[block + RESTITUTION]
-    rate = surface_rate(A, s, y)
+    rate = surface_rate(A, s, y, n)
+    factor = 0.0
     if rate > 0.0:  # approaching (a crossing at rate <= 0 is a graze of rounding size)
-        for k in range(n):
-            y[2 * k + 1] -= (1.0 + r) * rate * p[block + DIRECTION + k]
+        factor = 1.0 + r
+        for k in range(n // 2):
+            y[2 * k + 1] -= factor * rate * p[block + DIRECTION + k]
         istate[N_IMPACTS] += 1
     else:
         rate = 0.0
-    acc = free_acceleration(rhs, p, t, y, mode, A, s, f)
-    if acc <= -pull(y):  # it leaves (between -PULL and 0 it sticks: see PULL)
+    acc = free_acceleration(rhs, p, t, y, mode, A, s, f, n)
+    if acc <= -pull(y, n):  # it leaves (between -PULL and 0 it sticks: see PULL)
         if rate == 0.0:  # tangentially: see NUDGE
-            leave(p, block, y)
-        return False
+            leave(p, block, y, n, surface_gap(A, b, s, y, n))
+        return False, factor
     speed = r * rate
     scale = 1.0
-    for k in range(y.shape[0]):
+    for k in range(n):
         scale = max(scale, abs(y[k]))
     if r < 1.0 and speed * speed <= 2.0 * acc * RESOLUTION * scale:
         if speed > 0.0:
             istate[N_CHATTERS] += 1
-        plastic(p, block, y)
+        plastic(p, block, y, n)
         istate[N_STICKS] += 1
-        return True
-    return False
+        return True, factor
+    return False, factor
+
+
+@njit(cache=True)
+def impact_tangents(rhs, p, t, states, n, block, a, modes, reset):
+    """Carry the tangent vectors of a variational state ``z = (y, vec Phi)`` across an
+    impact: ``Phi <- S Phi``, S the saltation matrix of the reset (see the module's doc).
+    ``states``: (z before the reset, z after it, changed in place); ``a``: the stop's
+    surface row; ``modes``: the modes before and after it; ``reset``: (whether it stuck,
+    ``impact``'s factor; a stuck stop's reset, plastic in all, has 1)."""
+    before, z = states
+    sticks, factor = reset
+    S = np.empty((n, n))
+    DR = np.zeros((n, n))
+    for i in range(n):
+        DR[i, i] = 1.0
+    c = 1.0 if sticks else factor
+    bodies = n // 2
+    for i in range(bodies):
+        w = p[block + DIRECTION + i]
+        for j in range(bodies):
+            DR[2 * i + 1, 2 * j + 1] -= c * w * a[2 * j]
+    fb = np.empty(z.shape[0])
+    fa = np.empty(z.shape[0])
+    rhs(t, before, p, modes[0], fb)
+    rhs(t, z, p, modes[1], fa)
+    rate = reset_saltation(DR, fb, fa, a, n, S)
+    if sticks and rate <= 0.0:  # stuck from a tangential contact: on the constraint
+        for i in range(bodies):
+            w = p[block + DIRECTION + i]
+            for j in range(bodies):
+                S[2 * i, 2 * j] -= w * a[2 * j]
+    apply_to_tangents(S, z, n)
 
 
 @njit(cache=True)
@@ -183,12 +277,13 @@ def releasing(rhs, p, t, y, mode, stuck, A, table, f):
     ``-pull(y)`` at ``(t, y)`` in ``mode``, and the smallest free ``g'' + pull(y)`` over
     them (< 0: released)."""
     at, size, _ = table
-    released, lowest, margin = 0, np.inf, pull(y)
+    n = 2 * (size - 2)
+    released, lowest, margin = 0, np.inf, pull(y, n)
     for k in range(int(p[at])):
         s = int(p[at + 1 + k * size + SURFACE])
         if not (stuck >> s) & 1:
             continue
-        acc = free_acceleration(rhs, p, t, y, mode, A, s, f)
+        acc = free_acceleration(rhs, p, t, y, mode, A, s, f, n)
         lowest = min(lowest, acc + margin)
         if acc + margin < 0.0:
             released |= 1 << s
@@ -222,7 +317,7 @@ def impact_loop(name, advance):
         released, _ = releasing(rhs, p, t, y, istate[MODE], stuck, A_s, table, f)
         if released != 0:  # the force pulls already (a switch elsewhere changed it)
             istate[MODE] &= ~released
-            leave_released(p, table, released, y)
+            leave_released(p, table, released, y, A_s, surfaces[1])
             return OK, t
         t_b = min(t + opts[H_MAX] / STUCK_CHUNKS, t_end)
         saved = (y.copy(), istate.copy(), fstate.copy())
@@ -269,7 +364,7 @@ def impact_loop(name, advance):
         released, _ = releasing(rhs, p, hi, y, (istate[MODE] & ~rigid) | stuck, stuck, A_s,
                                 table, f)
         istate[MODE] &= ~released
-        leave_released(p, table, released, y)
+        leave_released(p, table, released, y, A_s, surfaces[1])
         fstate[T_STUCK] += hi - t
         return status, hi
 
@@ -280,7 +375,9 @@ def impact_loop(name, advance):
         A_s = surfaces[0]
         istate, fstate, _ = state
         dim = y.shape[0]
-        at, size = table_start(p), 2 + dim // 2
+        at = table_start(p)
+        size = table_size(p, at)
+        n = 2 * (size - 2)  # the bodies' state; a variational system's tangents follow
         rigid = 0
         for k in range(int(p[at])):
             rigid |= 1 << int(p[at + 1 + k * size + SURFACE])
@@ -307,9 +404,6 @@ def impact_loop(name, advance):
             if status != TOO_MANY_SWITCHES:
                 return status
             switches += 1
-            if switches > opts[MAX_SWITCHES]:
-                fstate[T_SWITCH] = t
-                return TOO_MANY_SWITCHES
             after = istate[MODE]
             hits = after & rigid & ~before
             istate[MODE] = (after & ~rigid) | stuck  # free until the impact says
@@ -318,9 +412,22 @@ def impact_loop(name, advance):
             for k in range(int(p[at])):
                 block = at + 1 + k * size
                 s = int(p[block + SURFACE])
-                if (hits >> s) & 1 and impact(rhs, p, t, y, block, A_s, s, istate[MODE],
-                                              istate, f):
+                if not (hits >> s) & 1:
+                    continue
+                mode = istate[MODE]
+                before_reset = y.copy() if dim > n else y
+                sticks, factor = impact(rhs, p, t, y, n, block, (A_s, surfaces[1], s), mode,
+                                        istate, f)
+                if sticks:
                     istate[MODE] |= 1 << s
+                if dim > n:  # a variational state: its tangents cross the impact too
+                    impact_tangents(rhs, p, t, (before_reset, y), n, block, A_s[s],
+                                    (mode, istate[MODE]), (sticks, factor))
+            # the budget is checked once the impacts are made: a caller stopping at every
+            # switch (kernels/lyapunov.py, budget 0) continues from the reset state
+            if switches > opts[MAX_SWITCHES]:
+                fstate[T_SWITCH] = t
+                return TOO_MANY_SWITCHES
         return OK
 
     return advance_impacts

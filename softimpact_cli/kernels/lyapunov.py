@@ -18,6 +18,12 @@ which is wrong wherever the field jumps: kept to show it) and advances on. The c
 surface is the one watched before the switch whose side changed; when two surfaces are
 crossed at the same instant, the first one's S is applied (a codimension-two event).
 The real switch budget ``opts[MAX_SWITCHES]`` still bounds the switches per interval.
+
+Rigid stops: ``advance`` is then the impact loop (``impacts.py``), which returns after each
+switch with the impact's reset made and the tangent vectors carried across it by the
+reset's saltation matrix; here the mode before and after such an impact agree on the
+stop's bit (no S applied), or the stop sticks, where the velocity across it is 0 exactly
+and :func:`saltation` gives I.
 """
 
 from math import log, sqrt

@@ -77,3 +77,31 @@ def apply_to_tangents(S, z, n):
             for k in range(n):
                 acc += S[i, k] * col[k]
             z[n + i * n + j] = acc
+
+
+@njit(cache=True)
+def reset_saltation(DR, fb, fa, a, n, S):
+    """The saltation matrix of a reset ``y+ = R(y-)`` on the surface ``h(y) = 0`` into
+    ``S`` (n, n):
+
+        S = DR + (f+ - DR f-) grad h^T / (grad h . f-),
+
+    DR (n, n) the reset's Jacobian, fb = f- before it, fa = f+ after it (their first ``n``
+    entries), a the gradient of h (Leine and Nijmeijer 2004, ch. 7; di Bernardo et al.
+    2008, ch. 2; Fredriksson and Nordmark 1997). With ``DR = I`` it is :func:`saltation`'s
+    matrix. Returns ``grad h . f-``; where it is 0 (a tangency) ``S = DR``, no time
+    correction.
+    """
+    rate = 0.0
+    for k in range(n):
+        rate += a[k] * fb[k]
+    for i in range(n):
+        jump = 0.0
+        if rate != 0.0:
+            jump = fa[i]
+            for k in range(n):
+                jump -= DR[i, k] * fb[k]
+            jump /= rate
+        for j in range(n):
+            S[i, j] = DR[i, j] + jump * a[j]
+    return rate

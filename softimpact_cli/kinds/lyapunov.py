@@ -66,6 +66,11 @@ def read(sec, ctx) -> LyapunovAnalysis:
         saltation=sec.boolean("saltation", True),
         follow=sec.boolean("follow", True),
     )
+    if not analysis.saltation and ctx.system.extra.get("rigid"):  # (kernels/impacts.py)
+        raise sec.fail("saltation", "false is not offered with a rigid stop: its impacts "
+                                    "always carry the tangent vectors by their saltation "
+                                    "matrix (leaving them out would not be a comparison "
+                                    "of anything); remove the key")
     if analysis.periods % analysis.segments:
         raise sec.fail("segments", f"must divide periods ({analysis.periods}) into equal "
                                    f"segments, got {analysis.segments}")

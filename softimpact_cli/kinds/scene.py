@@ -66,16 +66,10 @@ def chain_refusal(kind: str, doc: dict) -> str | None:
         why = CHAIN_REFUSALS.get(kind, "it is written for the presets")
         return (f"not yet for model = \"chain\" ({why}); a chain runs kind "
                 + " or ".join(map(repr, CHAIN_KINDS)))
-    rigid = any(isinstance(stop, dict) and stop.get("law") == "rigid"
-                for stop in doc.get("stop", []) or [])
-    if kind == "lyapunov" and rigid:
-        return ("not yet with a rigid stop: its exponents need the saltation matrix of the "
-                "impact's reset, not written yet (kinds trajectory, basins, dcrit and "
-                "bifurcation run)")
-    if kind == "continuation" and rigid:
-        return ("not yet with a rigid stop: its monodromy needs the saltation matrix of the "
-                "impact's reset, which the shooting's variational kernel does not apply yet "
-                "(kinds trajectory, basins, dcrit and bifurcation run)")
+    if kind == "lyapunov" and (doc.get("analysis", {}).get("start") == "catalogue"
+                               or "grid" in doc):
+        return ("on a chain only from a state (start = \"state\", no [grid]): its start "
+                "from the catalogue and its grid axes are written for the presets")
     return None
 
 

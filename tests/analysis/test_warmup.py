@@ -125,14 +125,16 @@ def test_warm_up_compiles_the_impact_loop_of_every_method_for_rigid_stops():
 
 def _signatures() -> dict[str, int]:
     """{kernel: compiled signatures} of every jitted function of the kernels' and systems'
-    modules in this process (loading one from the disk cache counts as compiling it)."""
+    modules in this process, and of the impact loops' advances (``kernels.IMPACT_ADVANCE``,
+    closures no module names); loading one from the disk cache counts as compiling it."""
     import importlib
     import pkgutil
 
     import softimpact_cli.kernels
     import softimpact_cli.systems
 
-    out = {}
+    out = {f"impacts.{name}": len(d.signatures)
+           for name, d in softimpact_cli.kernels.IMPACT_ADVANCE.items()}
     for package in (softimpact_cli.kernels, softimpact_cli.systems):
         for info in pkgutil.iter_modules(package.__path__):
             module = importlib.import_module(f"{package.__name__}.{info.name}")
@@ -162,3 +164,53 @@ def test_warm_up_reaches_a_rigid_chains_unresolved_trajectory():
     assert ds.attrs["second_stage"] != "not run"  # the first pass left it unresolved
     grown = {k: v for k, v in _signatures().items() if v != before.get(k, 0)}
     assert not grown, f"compiled after the warm-up: {grown}"
+
+
+def test_the_warm_up_compiles_lyapunov_and_continuation_with_a_rigid_stop():
+    """Kinds lyapunov and continuation on a rigid stop run the impact loop on the
+    variational equations (a new signature of it, of Benettin's kernel and of the flow):
+    once the warm-up's rigid steps have run, a rigid lyapunov and continuation scene
+    compile nothing more (so after ``make install`` such a run says no "compiling" line;
+    without the step "Lyapunov exponents and the shooting's monodromy", Benettin's kernel
+    and the flow compiled a new signature here)."""
+    from softimpact_cli.kinds.run import run_scene
+    from softimpact_cli.kinds.scene import parse_scene
+
+    steps = dict(warmup._steps("chain"))
+    assert any(n.startswith("chain with a rigid stop: Lyapunov") for n in steps)
+    for name, step in steps.items():
+        if name.startswith("chain with a rigid stop:"):
+            step()
+    before = _signatures()
+    head = """[system]
+model = "chain"
+bodies = 1
+c = 0.1
+phi = "3*pi/2"
+w = 0.8
+[[stop]]
+body = 1
+wall = 1.35
+side = "right"
+law = "rigid"
+r = 0.8
+"""
+    run_scene(parse_scene(head + """[analysis]
+kind = "lyapunov"
+state = [-0.5, 0.0]
+periods = 4
+transient = 0
+segments = 2
+"""))
+    run_scene(parse_scene(head + """[analysis]
+kind = "continuation"
+parameter = "stop.1.wall"
+low = 1.0
+high = 2.0
+start = "state"
+state = [-0.835, -0.339]
+max_points = 3
+switch_depth = 0
+"""))
+    after = _signatures()
+    assert {k: v for k, v in after.items() if before.get(k, 0) != v} == {}

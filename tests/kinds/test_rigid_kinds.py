@@ -2,17 +2,20 @@
 
     x'' + 2 zeta x' + x = cos(w t),   a wall at x = sigma, restitution r = 0.8,
 
-as a chain of one body with a rigid wall stop, through basins, bifurcation and dcrit; the
-expectations are independent of softimpact: the linear response's amplitude A (grazing at
-sigma = A), Shaw and Holmes's closed-form period-1 impacting orbit and scipy's event
-integration (``tests/analysis/rigid_reference.py``). Continuation is refused in one line.
+as a chain of one body with a rigid wall stop, through basins, bifurcation, dcrit and
+lyapunov; the expectations are independent of softimpact: the linear response's amplitude
+A (grazing at sigma = A), Shaw and Holmes's closed-form period-1 impacting orbit and scipy's
+event integration (``tests/analysis/rigid_reference.py``). Continuation:
+``test_rigid_continuation.py``. Lyapunov without saltation is refused in one line.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from click.testing import CliRunner
 
+from softimpact_cli.cli import main
 from softimpact_cli.config import ConfigError
 from softimpact_cli.kinds.results import describe, format_summary
 from softimpact_cli.kinds.run import run_scene
@@ -142,22 +145,50 @@ w = [0.8, 1.2]
     np.testing.assert_allclose(ds["d_crit"].values[0, 0], expected, rtol=1e-8)
 
 
-def test_continuation_with_a_rigid_stop_is_refused_in_one_line():
-    """Its monodromy comes from the Benettin kernel (kernels/lyapunov.py), which applies a
-    soft law's switches, not the impact's reset and its saltation: refused, not wrong."""
-    text = oscillator(0.8, 2.0, """[analysis]
-kind = "continuation"
-parameter = "stop.1.wall"
-low = 1.5
-high = 3.0
+def test_lyapunov_exponents_of_a_chaotic_rigid_orbit():
+    """w = 2.8, wall at 0 (chaotic: a positive exponent), 400 periods from (-0.5, 0): the
+    exponents' sum is the damping's -2 zeta plus ln det S = 2 ln r per impact (the
+    switches the kernel crossed are the impacts), and the spectrum is (+, -)."""
+    ds = run_scene(parse_scene(oscillator(2.8, 0.0, """[analysis]
+kind = "lyapunov"
 start = "state"
-state = [0.0, 0.0]
-""")
+state = [-0.5, 0.0]
+periods = 400
+transient = 0
+segments = 4
+""")))
+    exponents, errors = ds["exponent"].values[0], ds["exponent_stderr"].values[0]
+    assert int(ds["status"].values[0]) == 0
+    assert exponents[0] - 3.0 * errors[0] > 0.0 > exponents[1]
+    duration = 400 * 2.0 * np.pi / 2.8
+    impacts = int(ds["switches"].values[0])
+    assert impacts > 400
+    expected = -2.0 * ZETA * duration + 2.0 * np.log(R) * impacts
+    assert float(exponents.sum()) * duration == pytest.approx(expected, abs=1e-5)
+
+
+def test_lyapunov_without_saltation_on_a_rigid_stop_is_refused_in_one_line(tmp_path):
+    """``saltation = false`` (a comparison) cannot leave out an impact's saltation matrix
+    (the impact loop applies it): one line naming the key, exit 2, nothing written."""
+    path = tmp_path / "s.toml"
+    out = tmp_path / "out.h5"
+    path.write_text(oscillator(2.8, 0.0, f"""[analysis]
+kind = "lyapunov"
+start = "state"
+state = [-0.5, 0.0]
+saltation = false
+[output]
+path = "{out}"
+"""))
     with pytest.raises(ConfigError) as err:
-        parse_scene(text, "s.toml")
+        parse_scene(path.read_text(), "s.toml")
     message = str(err.value)
-    assert "kind = 'continuation'" in message and "rigid stop" in message
+    assert "[analysis] saltation" in message and "rigid stop" in message
     assert "\n" not in message
+    result = CliRunner().invoke(main, ["sweep", str(path)])
+    assert result.exit_code == 2
+    assert len(result.output.strip().splitlines()) == 1 and "saltation" in result.output
+    assert not out.exists()
 
 
 @pytest.mark.parametrize("w, wall, impacts", [(1.2, 1.2, 1), (0.65, 0.3, 2)])
