@@ -66,10 +66,6 @@ def chain_refusal(kind: str, doc: dict) -> str | None:
         why = CHAIN_REFUSALS.get(kind, "it is written for the presets")
         return (f"not yet for model = \"chain\" ({why}); a chain runs kind "
                 + " or ".join(map(repr, CHAIN_KINDS)))
-    if kind == "lyapunov" and (doc.get("analysis", {}).get("start") == "catalogue"
-                               or "grid" in doc):
-        return ("on a chain only from a state (start = \"state\", no [grid]): its start "
-                "from the catalogue and its grid axes are written for the presets")
     return None
 
 

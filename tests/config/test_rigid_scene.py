@@ -70,13 +70,14 @@ def test_a_preset_coupling_takes_no_rigid_law():
     assert "law" in str(err.value) and "\n" not in str(err.value)
 
 
-def test_rigid_needs_located_switches_and_refuses_lyapunov():
+def test_rigid_needs_located_switches_and_the_lyapunov_saltation():
     with pytest.raises(ConfigError, match="locate_switches"):
         parse_scene(HEAD + RIGID + TAIL + '[integrator]\nmethod = "rk4"\n'
                     'locate_switches = false\n', "s.toml")
     lyapunov = '\n[analysis]\nkind = "lyapunov"\nstart = "state"\nstate = [0.0, 0.0]\n'
-    with pytest.raises(ConfigError, match="rigid stop"):
-        parse_scene(HEAD + RIGID + lyapunov, "s.toml")
+    parse_scene(HEAD + RIGID + lyapunov, "s.toml")  # runs: the impacts' saltation is applied
+    with pytest.raises(ConfigError, match="saltation: false is not offered with a rigid stop"):
+        parse_scene(HEAD + RIGID + lyapunov + "saltation = false\n", "s.toml")
 
 
 def test_cli_refuses_restitution_out_of_range_before_anything_runs(tmp_path):
