@@ -19,13 +19,14 @@ $(STAMP): pyproject.toml
 	$(PY) -m softimpact_cli.analysis.warmup
 	touch $(STAMP)
 
-# The whole suite on both cores (pytest-xdist): 1533 tests in 8 min 48 s on 2 cores
-# after the install (pip, then kernels compiled in 336 s): 15 min 4 s in all on a clean
+# The whole suite on both cores (pytest-xdist): 1587 tests in 9 min 28 s on 2 cores
+# after the install (pip, then kernels compiled in 384 s): 16 min 33 s in all on a clean
 # clone (2026-11-27, `.ci/run` with empty caches). The interrupt tests wait
 # on events with generous deadlines, not on an idle machine; kernels a test compiles are
 # saved under a lock (kernels/numba_cache.py), so the two workers may compile at once.
+# --durations names the slowest tests in the log (where the suite's time goes).
 test: $(STAMP)
-	SOFTIMPACT_HYPOTHESIS=ci $(PY) -m pytest -n 2 $(PYTEST_ARGS)
+	SOFTIMPACT_HYPOTHESIS=ci $(PY) -m pytest -n 2 --durations=30 $(PYTEST_ARGS)
 
 # The suite without the tests marked slow, on both cores: about 6 minutes (1440 tests,
 # 723 s of CPU, 2026-11-27; benchmarks/pytest_cpu_per_test.py measures it per test).
