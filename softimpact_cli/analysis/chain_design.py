@@ -50,7 +50,7 @@ import xarray as xr
 from ..systems import System
 from .chain_catalogue import ChainCatalogue
 from .chain_region import ChainRegion, axis_sort, build_region, critical_of, region_map
-from .design import NoRegion, group_counts, halton, rank_codes, scores
+from .design import NoRegion, evaluated_rows, group_counts, halton, scores
 from .stability import wilson_interval
 
 PRIMES = (2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53)
@@ -147,35 +147,9 @@ def chain_design(system: System, values: dict, settings, n: int, evaluate: Evalu
         return region.margins(column, point)
 
     cand_margin = [margins_at(p) for p in candidates]
-    order = rank_codes(screen, label_names(), s.target, [m["relative"] for m in cand_margin])
-    finalists = [int(i) for i in order[: s.refine]]
-    progress(f"verifying the best {len(finalists)} on {n} samples")
-    rest = evaluate([candidates[i] for i in finalists], screen_n, n)
-    full = np.concatenate([screen[finalists], rest], axis=1)
-    final = rank_codes(full, label_names(), s.target,
-                  [cand_margin[i]["relative"] for i in finalists])
-    finalists = [finalists[int(k)] for k in final]
-    full = full[final]
-    pick = candidates[finalists[0]]
-    perturbed = perturbed_points(pick, s.perturbation, s.perturbation_steps)
-    progress(f"robustness: {len(perturbed)} perturbed points on {robust_n} samples"
-             + (f"; reference on {n}" if ref else ""))
-    robust = evaluate([p for _, _, p in perturbed], 0, robust_n)
-    ref_codes = evaluate([ref], 0, n) if ref else None
-
-    rows: list[dict] = []
-    for rank, (i, codes) in enumerate(zip(finalists, full, strict=True)):
-        rows.append({"point": candidates[i], "role": "best" if rank == 0 else "runner-up",
-                     "rank": rank, "codes": codes, "margin": cand_margin[i]})
-    if ref:
-        rows.append({"point": ref, "role": "reference", "codes": ref_codes[0]})
-    for (axis, k, p), codes in zip(perturbed, robust, strict=True):
-        rows.append({"point": p, "role": "perturbed", "axis": axis, "step": k,
-                     "codes": codes})
-    for i, p in enumerate(candidates):
-        if i not in finalists:
-            rows.append({"point": p, "role": "screened", "codes": screen[i],
-                         "margin": cand_margin[i]})
+    rows = evaluated_rows(evaluate, perturbed_points, candidates, screen, cand_margin,
+                          label_names, s.target, s, (n, screen_n, robust_n), ref, progress)
+    pick = rows[0]["point"]
     progress("margins and Floquet multipliers of the target")
     for r in rows:
         if "margin" not in r:

@@ -293,16 +293,45 @@ def design(system, values: dict, left: list, settings, n: int, evaluate: Evaluat
     screen = evaluate(candidates, 0, screen_n)
     cand_margin = [margins(region, d_crit[:, region.index(p["phi"])], p["d"], p["phi"])
                    for p in candidates]  # candidates sit on grid phases: exact columns
-    order = rank_codes(screen, names, target, [m["relative"] for m in cand_margin])
+    rows = evaluated_rows(evaluate, perturbed_points, candidates, screen, cand_margin,
+                          lambda: names, target, s, (n, screen_n, robust_n), ref, progress)
+    progress("margins and Floquet multipliers of the target")
+    missing = sorted({r["point"]["phi"] for r in rows if "margin" not in r})
+    if missing:
+        names_x, columns = critical_columns(system, values, left, missing)
+        assert names_x == names  # the same catalogue: names come out in the same order
+    for r in rows:
+        if "margin" not in r:
+            column = columns[:, missing.index(r["point"]["phi"])]
+            r["margin"] = margins(region, column, r["point"]["d"], r["point"]["phi"])
+        if r["role"] != "screened":
+            r["exists"], r["multipliers"] = target_multipliers(system, values, left, target,
+                                                               r["point"])
+    return design_dataset(rows, region, s, n, screen_n, robust_n)
+
+
+def evaluated_rows(evaluate, perturb, candidates: list[dict], screen: np.ndarray,
+                   cand_margin: list[dict], label_names, target: str, s,
+                   sizes: tuple[int, int, int], ref: dict | None, progress) -> list[dict]:
+    """The design's stages after the screening, shared by a pair's and a chain's: rank the
+    screened ``candidates`` (label codes ``screen``, margins ``cand_margin``), verify the
+    best ``s.refine`` on n samples, rank them again, perturb the pick (robustness on
+    robust_n samples) and evaluate the ``ref`` point; ``sizes = (n, screen_n, robust_n)``,
+    ``label_names()`` the names of the codes so far. Returns one row per evaluated point
+    (role, codes; margins of the candidates; the caller adds the others' margins), best
+    first. ``perturb(pick, relative, steps)``: the perturbed points, (axis, step, point)
+    each (:func:`perturbed_points` for a pair)."""
+    n, screen_n, robust_n = sizes
+    margin_of = [m["relative"] for m in cand_margin]
+    order = rank_codes(screen, label_names(), target, margin_of)
     finalists = [int(i) for i in order[: s.refine]]
     progress(f"verifying the best {len(finalists)} on {n} samples")
     rest = evaluate([candidates[i] for i in finalists], screen_n, n)
     full = np.concatenate([screen[finalists], rest], axis=1)
-    final = rank_codes(full, names, target, [cand_margin[i]["relative"] for i in finalists])
+    final = rank_codes(full, label_names(), target, [margin_of[i] for i in finalists])
     finalists = [finalists[int(k)] for k in final]
     full = full[final]
-    pick = candidates[finalists[0]]
-    perturbed = perturbed_points(pick, s.perturbation, s.perturbation_steps)
+    perturbed = perturb(candidates[finalists[0]], s.perturbation, s.perturbation_steps)
     progress(f"robustness: {len(perturbed)} perturbed points on {robust_n} samples"
              + (f"; reference on {n}" if ref else ""))
     robust = evaluate([p for _, _, p in perturbed], 0, robust_n)
@@ -321,19 +350,7 @@ def design(system, values: dict, left: list, settings, n: int, evaluate: Evaluat
         if i not in finalists:
             rows.append({"point": p, "role": "screened", "codes": screen[i],
                          "margin": cand_margin[i]})
-    progress("margins and Floquet multipliers of the target")
-    missing = sorted({r["point"]["phi"] for r in rows if "margin" not in r})
-    if missing:
-        names_x, columns = critical_columns(system, values, left, missing)
-        assert names_x == names  # the same catalogue: names come out in the same order
-    for r in rows:
-        if "margin" not in r:
-            column = columns[:, missing.index(r["point"]["phi"])]
-            r["margin"] = margins(region, column, r["point"]["d"], r["point"]["phi"])
-        if r["role"] != "screened":
-            r["exists"], r["multipliers"] = target_multipliers(system, values, left, target,
-                                                               r["point"])
-    return design_dataset(rows, region, s, n, screen_n, robust_n)
+    return rows
 
 
 def rank_codes(codes: np.ndarray, names: tuple[str, ...], target: str, margin) -> np.ndarray:
