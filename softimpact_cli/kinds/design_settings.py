@@ -158,9 +158,17 @@ def read_design(sec: Section, values: Mapping, check_axis) -> DesignAnalysis:
             if problem:
                 raise sec.fail(f"reference.{a}", f"{problem}, got {v!r}")
             reference[a] = v
+    return DesignAnalysis(kind="design", target=target, bounds=bounds, reference=reference,
+                          phi_points=sec.integer("phi_points", 180, 8, 100_000),
+                          **_budget_keys(sec))
+
+
+def _budget_keys(sec: Section) -> dict:
+    """The keys a pair's and a chain's design share: how many points, samples and
+    perturbations the search spends, its margin, seed, label tolerance and shocks."""
     candidates = sec.integer("candidates", 48, 1, 100_000)
-    design = DesignAnalysis(
-        kind="design", target=target, bounds=bounds, candidates=candidates,
+    return dict(
+        candidates=candidates,
         screen_n=sec.integer("screen_n", 100, 1, MAX_INITIAL_CONDITIONS),
         refine=sec.integer("refine", min(4, candidates), 1, candidates),
         robust_n=(sec.integer("robust_n", 1, 1, MAX_INITIAL_CONDITIONS)
@@ -170,13 +178,10 @@ def read_design(sec: Section, values: Mapping, check_axis) -> DesignAnalysis:
         perturbation_steps=sec.integer("perturbation_steps", 1, 1, 10),
         min_margin=sec.number("min_margin", 0.02,
                               lambda v: None if 0 <= v < 0.5 else "must be in [0, 0.5)"),
-        phi_points=sec.integer("phi_points", 180, 8, 100_000),
-        reference=reference,
         seed=sec.integer("seed", 0, 0, MAX_SEED),
         label_tol=sec.number("label_tol", 1e-3, lambda v: None if v > 0 else "must be > 0"),
         shock_directions=sec.integer("shock_directions", 16, 0, 100_000),
     )
-    return design
 
 
 def read_chain_design(sec: Section, system, values: Mapping, check_axis) -> DesignAnalysis:
@@ -234,24 +239,8 @@ def read_chain_design(sec: Section, system, values: Mapping, check_axis) -> Desi
     if grid_points ** len(body) > MAX_REGION_POINTS:
         raise sec.fail("grid_points", f"{grid_points}^{len(body)} body grid points (one "
                                       f"catalogue each); at most {MAX_REGION_POINTS}")
-    candidates = sec.integer("candidates", 48, 1, 100_000)
-    return DesignAnalysis(
-        kind="design", target=target, bounds=bounds, candidates=candidates,
-        screen_n=sec.integer("screen_n", 100, 1, MAX_INITIAL_CONDITIONS),
-        refine=sec.integer("refine", min(4, candidates), 1, candidates),
-        robust_n=(sec.integer("robust_n", 1, 1, MAX_INITIAL_CONDITIONS)
-                  if sec.has("robust_n") else None),
-        perturbation=sec.number("perturbation", 0.02,
-                                lambda v: None if 0 < v < 0.5 else "must be in (0, 0.5)"),
-        perturbation_steps=sec.integer("perturbation_steps", 1, 1, 10),
-        min_margin=sec.number("min_margin", 0.02,
-                              lambda v: None if 0 <= v < 0.5 else "must be in [0, 0.5)"),
-        reference=reference,
-        seed=sec.integer("seed", 0, 0, MAX_SEED),
-        label_tol=sec.number("label_tol", 1e-3, lambda v: None if v > 0 else "must be > 0"),
-        shock_directions=sec.integer("shock_directions", 16, 0, 100_000),
-        grid_points=grid_points,
-    )
+    return DesignAnalysis(kind="design", target=target, bounds=bounds, reference=reference,
+                          grid_points=grid_points, **_budget_keys(sec))
 
 
 def with_target(scene, target: str):
